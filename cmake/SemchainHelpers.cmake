@@ -1,0 +1,45 @@
+# Shared build settings for every semchain target.
+
+function(semchain_set_warnings target)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                                           -Wno-sign-conversion)
+  if(SEMCHAIN_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# semchain_add_module(NAME SOURCES ... DEPS ...): one static library per folder under src/.
+function(semchain_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(semchain_${name} STATIC ${ARG_SOURCES})
+  add_library(semchain::${name} ALIAS semchain_${name})
+  target_include_directories(semchain_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(semchain_${name} PUBLIC ${ARG_DEPS})
+  semchain_set_warnings(semchain_${name})
+endfunction()
+
+# semchain_add_test(NAME SOURCES ... DEPS ...): a GoogleTest program registered with CTest.
+function(semchain_add_test name)
+  if(NOT BUILD_TESTING)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    SEMCHAIN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    SEMCHAIN_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data")
+  semchain_set_warnings(${name})
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+endfunction()
+
+# semchain_add_benchmark(NAME SOURCES ... DEPS ...): a Google Benchmark program under bench/.
+function(semchain_add_benchmark name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} benchmark::benchmark)
+  target_compile_definitions(${name} PRIVATE SEMCHAIN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  semchain_set_warnings(${name})
+endfunction()

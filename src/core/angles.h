@@ -1,0 +1,23 @@
+#pragma once
+
+#include <cmath>
+#include <numbers>
+
+namespace semchain {
+
+inline constexpr double kPi = std::numbers::pi;
+
+// Wraps an angle into (-pi, pi].
+inline double NormalizeAngle(double angle) {
+  double a = std::fmod(angle + kPi, 2.0 * kPi);
+  if (a <= 0.0) a += 2.0 * kPi;
+  return a - kPi;
+}
+
+// The signed smallest rotation taking 'from' to 'to', in (-pi, pi].
+inline double AngleDifference(double to, double from) { return NormalizeAngle(to - from); }
+
+inline constexpr double DegToRad(double degrees) { return degrees * kPi / 180.0; }
+inline constexpr double RadToDeg(double radians) { return radians * 180.0 / kPi; }
+
+}  // namespace semchain

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace semchain {
+
+// One object found in a camera frame (DESIGN.md §5.5).
+struct Detection {
+  std::string class_name;
+  int class_id = -1;
+  double score = 0.0;
+  double box[4] = {0.0, 0.0, 0.0, 0.0};  // x1, y1, x2, y2 in image pixels
+  double depth_m = 0.0;                  // depth of the visible surface at the box
+};
+
+// The detections of one frame; 'frame' names the RGB/depth pair without extension.
+struct FrameDetections {
+  std::string frame;
+  double stamp = 0.0;
+  std::vector<Detection> detections;
+};
+
+// The default class list and order (seed 000 §3.1 step 4).
+inline const std::vector<std::string>& DefaultClassNames() {
+  static const std::vector<std::string> kNames = {"door", "cabinet", "bucket", "chair", "stool"};
+  return kNames;
+}
+
+}  // namespace semchain

@@ -1,0 +1,99 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/pose2.h"
+#include "core/status.h"
+
+// The simulated world (DESIGN.md §3.1, format §5.2).
+namespace semchain::sim {
+
+// A 2D footprint: a box (width along its yaw direction, depth across it) or a circle.
+struct Footprint {
+  enum class Shape { kBox, kCircle };
+  Shape shape = Shape::kBox;
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double yaw = 0.0;     // radians, counter-clockwise from the world x axis
+  double width = 0.0;   // box: extent along yaw (metres)
+  double depth = 0.0;   // box: extent across yaw (metres)
+  double radius = 0.0;  // circle
+};
+
+// A vertical prism standing on the floor: a semantic object or a plain obstacle.
+struct Solid {
+  std::string class_name;  // empty for a non-semantic obstacle
+  Footprint footprint;
+  double height = 1.0;          // metres
+  double base_height = 0.0;     // metres above the floor where it starts (e.g. a table top)
+  std::uint32_t texture_seed = 0;  // derived from the world seed and index when not given
+  std::array<std::uint8_t, 3> color = {200, 200, 200};  // base colour (RGB) of its texture
+};
+
+struct LidarSpec {
+  double height = 0.19;     // metres above the floor (the scan plane)
+  int beams = 360;
+  double fov_deg = 360.0;   // centred on the robot's heading
+  double max_range = 12.0;  // metres
+  double noise_std = 0.01;  // metres, Gaussian range noise
+  double forward_offset = 0.0;  // metres ahead of the robot centre
+};
+
+struct CameraSpec {
+  double height = 0.5;      // metres above the floor
+  double fov_deg = 60.0;    // horizontal
+  int width = 320;
+  int height_px = 240;
+  double max_range = 6.0;   // metres
+  double pitch_deg = 0.0;   // positive looks down
+  double forward_offset = 0.0;
+  double depth_noise_std = 0.0;  // metres, per-pixel Gaussian noise on the depth image
+};
+
+// The detection error model (DESIGN.md §3.1).
+struct DetectionModelSpec {
+  double miss_probability = 0.05;          // a visible object is not reported
+  double confusion_probability = 0.02;     // reported with another class
+  double false_positives_per_frame = 0.02; // Poisson mean of spurious boxes
+  double min_visible_fraction = 0.3;       // of the object's projected box that must be seen
+  int min_box_pixels = 12;                 // smaller boxes are not detected
+  double box_noise_px = 2.0;               // std of box edge jitter
+  double depth_noise_std = 0.02;           // metres
+};
+
+struct RobotSpec {
+  Pose2 start;
+  double radius = 0.2;  // metres, for the controller's clearance
+  LidarSpec lidar;
+  CameraSpec camera;
+  // Thrun's odometry model α1..α4 (Probabilistic Robotics, table 5.6).
+  std::array<double, 4> odometry_noise = {0.05, 0.05, 0.05, 0.05};
+  double max_speed = 0.5;          // m/s
+  double max_turn_rate = 1.0;      // rad/s
+  double scan_rate_hz = 10.0;      // lidar and odometry records per second
+  double frame_rate_hz = 2.0;      // camera frames per second
+};
+
+struct World {
+  std::string name;
+  std::vector<std::vector<Eigen::Vector2d>> walls;  // polylines
+  double wall_height = 2.5;
+  double wall_thickness = 0.0;  // 0 = infinitely thin segments
+  std::vector<Solid> objects;    // semantic objects (class_name set)
+  std::vector<Solid> obstacles;  // non-semantic
+  RobotSpec robot;
+  DetectionModelSpec detection;
+  std::vector<std::string> classes;  // class-id order; default DefaultClassNames()
+  std::vector<Eigen::Vector2d> mapping_route;
+  std::vector<Eigen::Vector2d> trial_region;  // polygon
+};
+
+// Loads a world; unknown keys, malformed numbers, a wall with fewer than two points, … are
+// errors naming the file, line and key path ("w.yaml:7: objects[2].radius: not a number").
+Result<World> LoadWorld(const std::filesystem::path& path);
+Result<World> ParseWorld(const std::string& yaml_text, const std::string& source_name);
+
+}  // namespace semchain::sim
