@@ -1,0 +1,20 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include "core/status.h"
+
+namespace semchain::app {
+
+// Each subcommand lives in its own <name>_command.cc and registers itself on the root app.
+// Its callback stores the process exit code in 'exit_code'.
+void AddSimulateCommand(CLI::App& app, int& exit_code);
+void AddRenderCommand(CLI::App& app, int& exit_code);
+void AddSlamCommand(CLI::App& app, int& exit_code);
+void AddEvalCommand(CLI::App& app, int& exit_code);
+void AddBenchCommand(CLI::App& app, int& exit_code);
+
+// Prints "semchain: error: <message>" on one line to stderr and returns the exit code 1.
+int ReportError(const Status& status);
+
+}  // namespace semchain::app

@@ -1,0 +1,158 @@
+#include "sim/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace semchain::sim {
+namespace {
+
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double length_sq = ab.squaredNorm();
+  const double t = length_sq > 0.0 ? std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> BoxCorners(const Footprint& f) {
+  const Eigen::Vector2d along(std::cos(f.yaw), std::sin(f.yaw));
+  const Eigen::Vector2d across(-along.y(), along.x());
+  const Eigen::Vector2d half_w = 0.5 * f.width * along;
+  const Eigen::Vector2d half_d = 0.5 * f.depth * across;
+  return {f.center - half_w - half_d, f.center + half_w - half_d, f.center + half_w + half_d,
+          f.center - half_w + half_d};
+}
+
+bool FootprintContains(const Footprint& f, const Eigen::Vector2d& point) {
+  const Eigen::Vector2d d = point - f.center;
+  if (f.shape == Footprint::Shape::kCircle) return d.norm() <= f.radius;
+  const double along = d.x() * std::cos(f.yaw) + d.y() * std::sin(f.yaw);
+  const double across = -d.x() * std::sin(f.yaw) + d.y() * std::cos(f.yaw);
+  return std::abs(along) <= 0.5 * f.width && std::abs(across) <= 0.5 * f.depth;
+}
+
+bool PolygonContains(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+Scene::Scene(const World& world) : world_(world) {
+  for (std::size_t w = 0; w < world_.walls.size(); ++w) {
+    const auto& line = world_.walls[w];
+    double u = 0.0;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      edges_.push_back({line[i], line[i + 1], u, 0.0, world_.wall_height,
+                        {SurfaceRef::Kind::kWall, static_cast<int>(w)}});
+      u += (line[i + 1] - line[i]).norm();
+    }
+  }
+  for (std::size_t i = 0; i < world_.objects.size(); ++i) {
+    AddSolid(world_.objects[i], {SurfaceRef::Kind::kObject, static_cast<int>(i)});
+  }
+  for (std::size_t i = 0; i < world_.obstacles.size(); ++i) {
+    AddSolid(world_.obstacles[i], {SurfaceRef::Kind::kObstacle, static_cast<int>(i)});
+  }
+}
+
+void Scene::AddSolid(const Solid& solid, SurfaceRef ref) {
+  const double bottom = solid.base_height;
+  const double top = solid.base_height + solid.height;
+  if (solid.footprint.shape == Footprint::Shape::kCircle) {
+    circles_.push_back({solid.footprint.center, solid.footprint.radius, bottom, top, ref});
+    return;
+  }
+  const std::vector<Eigen::Vector2d> corners = BoxCorners(solid.footprint);
+  double u = 0.0;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Eigen::Vector2d& a = corners[i];
+    const Eigen::Vector2d& b = corners[(i + 1) % corners.size()];
+    edges_.push_back({a, b, u, bottom, top, ref});
+    u += (b - a).norm();
+  }
+}
+
+template <typename Visit>
+void Scene::ForEachHit(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+                       double max_range, Visit&& visit) const {
+  for (const Edge& edge : edges_) {
+    const Eigen::Vector2d e = edge.b - edge.a;
+    const double denominator = Cross(direction, e);
+    if (std::abs(denominator) < 1e-12) continue;  // parallel: grazing rays see nothing
+    const Eigen::Vector2d w = edge.a - origin;
+    const double t = Cross(w, e) / denominator;
+    const double s = Cross(w, direction) / denominator;
+    if (t <= 1e-9 || t > max_range || s < 0.0 || s > 1.0) continue;
+    Eigen::Vector2d normal = Eigen::Vector2d(-e.y(), e.x()).normalized();
+    if (normal.dot(direction) > 0.0) normal = -normal;
+    visit(RayHit{t, origin + t * direction, normal, edge.u0 + s * e.norm(), edge.bottom, edge.top,
+                 edge.surface});
+  }
+  for (const Circle& circle : circles_) {
+    // |origin + t d - c|² = r² with |d| = 1; only the entry point of the circle is visible.
+    const Eigen::Vector2d m = origin - circle.center;
+    const double b = m.dot(direction);
+    const double c = m.squaredNorm() - circle.radius * circle.radius;
+    const double discriminant = b * b - c;
+    if (c <= 0.0 || discriminant < 0.0) continue;  // origin inside, or a miss
+    const double t = -b - std::sqrt(discriminant);
+    if (t <= 1e-9 || t > max_range) continue;
+    const Eigen::Vector2d point = origin + t * direction;
+    const Eigen::Vector2d normal = (point - circle.center) / circle.radius;
+    const double u = circle.radius * (std::atan2(normal.y(), normal.x()) + M_PI);
+    visit(RayHit{t, point, normal, u, circle.bottom, circle.top, circle.surface});
+  }
+}
+
+std::optional<RayHit> Scene::CastAtHeight(const Eigen::Vector2d& origin, double angle,
+                                          double max_range, double height) const {
+  std::optional<RayHit> nearest;
+  const Eigen::Vector2d direction(std::cos(angle), std::sin(angle));
+  ForEachHit(origin, direction, max_range, [&](const RayHit& hit) {
+    if (height < hit.bottom || height > hit.top) return;
+    if (!nearest || hit.distance < nearest->distance) nearest = hit;
+  });
+  return nearest;
+}
+
+std::vector<RayHit> Scene::CastAll(const Eigen::Vector2d& origin, double angle,
+                                   double max_range) const {
+  std::vector<RayHit> hits;
+  const Eigen::Vector2d direction(std::cos(angle), std::sin(angle));
+  ForEachHit(origin, direction, max_range, [&](const RayHit& hit) { hits.push_back(hit); });
+  std::sort(hits.begin(), hits.end(),
+            [](const RayHit& a, const RayHit& b) { return a.distance < b.distance; });
+  return hits;
+}
+
+bool Scene::IsOccupied(const Eigen::Vector2d& point, double clearance) const {
+  for (const Solid& solid : world_.objects) {
+    if (FootprintContains(solid.footprint, point)) return true;
+  }
+  for (const Solid& solid : world_.obstacles) {
+    if (FootprintContains(solid.footprint, point)) return true;
+  }
+  for (const Edge& edge : edges_) {
+    if (DistanceToSegment(point, edge.a, edge.b) < clearance) return true;
+  }
+  for (const Circle& circle : circles_) {
+    if ((point - circle.center).norm() < circle.radius + clearance) return true;
+  }
+  return false;
+}
+
+}  // namespace semchain::sim
