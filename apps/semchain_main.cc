@@ -23,9 +23,8 @@ int main(int argc, char** argv) {
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log debug messages");
   spdlog::set_pattern("[%l] %v");
-  app.parse_complete_callback([&verbose] {
-    spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
-  });
+  app.parse_complete_callback(
+      [&verbose] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info); });
 
   int exit_code = 0;
   semchain::app::AddSimulateCommand(app, exit_code);

@@ -13,8 +13,7 @@ Pose2::Pose2(double x_in, double y_in, double theta_in)
 Pose2 Pose2::operator*(const Pose2& other) const {
   const double c = std::cos(theta);
   const double s = std::sin(theta);
-  return Pose2(x + c * other.x - s * other.y, y + s * other.x + c * other.y,
-               theta + other.theta);
+  return Pose2(x + c * other.x - s * other.y, y + s * other.x + c * other.y, theta + other.theta);
 }
 
 Eigen::Vector2d Pose2::operator*(const Eigen::Vector2d& point) const {

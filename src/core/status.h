@@ -36,7 +36,7 @@ class Status {
 template <typename T>
 class Result {
  public:
-  Result(T value) : data_(std::move(value)) {}  // NOLINT: implicit by design.
+  Result(T value) : data_(std::move(value)) {}      // NOLINT: implicit by design.
   Result(Status error) : data_(std::move(error)) {  // NOLINT: implicit by design.
     SEMCHAIN_CHECK(!std::get<Status>(data_).ok());
   }
@@ -67,8 +67,8 @@ class Result {
 }  // namespace semchain
 
 // Returns early from a function returning Status or Result<T> when 'expr' failed.
-#define SEMCHAIN_RETURN_IF_ERROR(expr)            \
-  do {                                            \
-    ::semchain::Status semchain_status_ = (expr); \
+#define SEMCHAIN_RETURN_IF_ERROR(expr)                   \
+  do {                                                   \
+    ::semchain::Status semchain_status_ = (expr);        \
     if (!semchain_status_.ok()) return semchain_status_; \
   } while (false)

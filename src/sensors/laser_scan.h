@@ -27,8 +27,8 @@ struct LaserScan {
 // pose at the scan's time, both in the odometry frame. 'laser_offset' = odom⁻¹ ⊕ laser.
 struct StampedScan {
   LaserScan scan;
-  Pose2 odometry;     // robot pose from odometry
-  Pose2 laser_pose;   // laser pose from odometry
+  Pose2 odometry;    // robot pose from odometry
+  Pose2 laser_pose;  // laser pose from odometry
   Pose2 LaserOffset() const { return odometry.Between(laser_pose); }
 };
 

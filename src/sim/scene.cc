@@ -56,7 +56,11 @@ Scene::Scene(const World& world) : world_(world) {
     const auto& line = world_.walls[w];
     double u = 0.0;
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-      edges_.push_back({line[i], line[i + 1], u, 0.0, world_.wall_height,
+      edges_.push_back({line[i],
+                        line[i + 1],
+                        u,
+                        0.0,
+                        world_.wall_height,
                         {SurfaceRef::Kind::kWall, static_cast<int>(w)}});
       u += (line[i + 1] - line[i]).norm();
     }

@@ -35,13 +35,12 @@ class Scene {
 
   // The nearest surface met by the ray from 'origin' at heading 'angle' within 'max_range'
   // whose vertical extent contains 'height' (a lidar's scan plane), or nothing.
-  std::optional<RayHit> CastAtHeight(const Eigen::Vector2d& origin, double angle,
-                                     double max_range, double height) const;
+  std::optional<RayHit> CastAtHeight(const Eigen::Vector2d& origin, double angle, double max_range,
+                                     double height) const;
 
   // Every surface the ray meets within 'max_range', nearest first, whatever its height (the
   // 2.5D renderer looks over low surfaces at taller ones behind them).
-  std::vector<RayHit> CastAll(const Eigen::Vector2d& origin, double angle,
-                              double max_range) const;
+  std::vector<RayHit> CastAll(const Eigen::Vector2d& origin, double angle, double max_range) const;
 
   // True when 'point' lies inside a solid's footprint or closer than 'clearance' to any
   // surface (walls included).
@@ -64,8 +63,8 @@ class Scene {
   };
   void AddSolid(const Solid& solid, SurfaceRef ref);
   template <typename Visit>
-  void ForEachHit(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
-                  double max_range, Visit&& visit) const;
+  void ForEachHit(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction, double max_range,
+                  Visit&& visit) const;
 
   World world_;
   std::vector<Edge> edges_;

@@ -27,41 +27,41 @@ struct Footprint {
 struct Solid {
   std::string class_name;  // empty for a non-semantic obstacle
   Footprint footprint;
-  double height = 1.0;          // metres
-  double base_height = 0.0;     // metres above the floor where it starts (e.g. a table top)
+  double height = 1.0;             // metres
+  double base_height = 0.0;        // metres above the floor where it starts (e.g. a table top)
   std::uint32_t texture_seed = 0;  // derived from the world seed and index when not given
   std::array<std::uint8_t, 3> color = {200, 200, 200};  // base colour (RGB) of its texture
 };
 
 struct LidarSpec {
-  double height = 0.19;     // metres above the floor (the scan plane)
+  double height = 0.19;  // metres above the floor (the scan plane)
   int beams = 360;
-  double fov_deg = 360.0;   // centred on the robot's heading
-  double max_range = 12.0;  // metres
-  double noise_std = 0.01;  // metres, Gaussian range noise
+  double fov_deg = 360.0;       // centred on the robot's heading
+  double max_range = 12.0;      // metres
+  double noise_std = 0.01;      // metres, Gaussian range noise
   double forward_offset = 0.0;  // metres ahead of the robot centre
 };
 
 struct CameraSpec {
-  double height = 0.5;      // metres above the floor
-  double fov_deg = 60.0;    // horizontal
+  double height = 0.5;    // metres above the floor
+  double fov_deg = 60.0;  // horizontal
   int width = 320;
   int height_px = 240;
-  double max_range = 6.0;   // metres
-  double pitch_deg = 0.0;   // positive looks down
+  double max_range = 6.0;  // metres
+  double pitch_deg = 0.0;  // positive looks down
   double forward_offset = 0.0;
   double depth_noise_std = 0.0;  // metres, per-pixel Gaussian noise on the depth image
 };
 
 // The detection error model (DESIGN.md §3.1).
 struct DetectionModelSpec {
-  double miss_probability = 0.05;          // a visible object is not reported
-  double confusion_probability = 0.02;     // reported with another class
-  double false_positives_per_frame = 0.02; // Poisson mean of spurious boxes
-  double min_visible_fraction = 0.3;       // of the object's projected box that must be seen
-  int min_box_pixels = 12;                 // smaller boxes are not detected
-  double box_noise_px = 2.0;               // std of box edge jitter
-  double depth_noise_std = 0.02;           // metres
+  double miss_probability = 0.05;           // a visible object is not reported
+  double confusion_probability = 0.02;      // reported with another class
+  double false_positives_per_frame = 0.02;  // Poisson mean of spurious boxes
+  double min_visible_fraction = 0.3;        // of the object's projected box that must be seen
+  int min_box_pixels = 12;                  // smaller boxes are not detected
+  double box_noise_px = 2.0;                // std of box edge jitter
+  double depth_noise_std = 0.02;            // metres
 };
 
 struct RobotSpec {
@@ -71,17 +71,17 @@ struct RobotSpec {
   CameraSpec camera;
   // Thrun's odometry model α1..α4 (Probabilistic Robotics, table 5.6).
   std::array<double, 4> odometry_noise = {0.05, 0.05, 0.05, 0.05};
-  double max_speed = 0.5;          // m/s
-  double max_turn_rate = 1.0;      // rad/s
-  double scan_rate_hz = 10.0;      // lidar and odometry records per second
-  double frame_rate_hz = 2.0;      // camera frames per second
+  double max_speed = 0.5;      // m/s
+  double max_turn_rate = 1.0;  // rad/s
+  double scan_rate_hz = 10.0;  // lidar and odometry records per second
+  double frame_rate_hz = 2.0;  // camera frames per second
 };
 
 struct World {
   std::string name;
   std::vector<std::vector<Eigen::Vector2d>> walls;  // polylines
   double wall_height = 2.5;
-  double wall_thickness = 0.0;  // 0 = infinitely thin segments
+  double wall_thickness = 0.0;   // 0 = infinitely thin segments
   std::vector<Solid> objects;    // semantic objects (class_name set)
   std::vector<Solid> obstacles;  // non-semantic
   RobotSpec robot;
