@@ -1,12 +1,112 @@
+// `semchain eval relations|ate`: scores a trajectory and prints one JSON object (DESIGN.md §4).
+#include <iostream>
+#include <memory>
+#include <string>
+
 #include "apps/command.h"
+#include "eval/ate.h"
+#include "eval/relations.h"
+#include "io/trajectory_io.h"
 
 namespace semchain::app {
+namespace {
 
-// Placeholder until the eval work lands: the subcommand exists and explains itself.
-void AddEvalCommand(CLI::App& app, int& exit_code) {
-  CLI::App* command = app.add_subcommand("eval", "(not yet available)");
+// Reads a trajectory and fails when it has no pose (an empty file is a wrong path, not a score).
+Result<std::vector<StampedPose>> ReadPoses(const std::string& path) {
+  Result<std::vector<StampedPose>> poses = ReadTrajectory(path);
+  if (poses.ok() && poses->empty()) return Status::Error(path + ": no poses in trajectory file");
+  return poses;
+}
+
+int RunRelations(const std::string& poses_path, const std::string& relations_path,
+                 const eval::RelationOptions& options) {
+  if (!(options.timestamp_tolerance_s >= 0.0)) {
+    return ReportError(Status::Error("--tolerance must be >= 0 seconds"));
+  }
+  const Result<std::vector<StampedPose>> poses = ReadPoses(poses_path);
+  if (!poses.ok()) return ReportError(poses.status());
+  const Result<std::vector<eval::Relation>> relations = eval::ReadRelations(relations_path);
+  if (!relations.ok()) return ReportError(relations.status());
+  const Result<eval::RelationErrors> errors = eval::EvaluateRelations(*poses, *relations, options);
+  if (!errors.ok()) return ReportError(errors.status().WithContext(relations_path));
+  std::cout << eval::RelationErrorsToJson(*errors) << std::endl;
+  return 0;
+}
+
+int RunAte(const std::string& poses_path, const std::string& truth_path,
+           const eval::AteOptions& options) {
+  if (!(options.timestamp_tolerance_s >= 0.0) || !(options.max_interpolation_gap_s >= 0.0)) {
+    return ReportError(Status::Error("--tolerance and --max-gap must be >= 0 seconds"));
+  }
+  const Result<std::vector<StampedPose>> poses = ReadPoses(poses_path);
+  if (!poses.ok()) return ReportError(poses.status());
+  const Result<std::vector<StampedPose>> truth = ReadPoses(truth_path);
+  if (!truth.ok()) return ReportError(truth.status());
+  const Result<eval::AteResult> result = eval::EvaluateAte(*poses, *truth, options);
+  if (!result.ok()) return ReportError(result.status().WithContext(poses_path));
+  std::cout << eval::AteResultToJson(*result) << std::endl;
+  return 0;
+}
+
+void AddRelations(CLI::App& eval, int& exit_code) {
+  CLI::App* command = eval.add_subcommand(
+      "relations",
+      "Relation metric of Kuemmerle et al. 2009: mean/std of translational (m) and rotational "
+      "(deg) errors, absolute and squared, as one JSON object");
+  struct Args {
+    std::string poses, relations;
+    eval::RelationOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  command->add_option("--poses", args->poses, "Trajectory file: 'timestamp x y theta' per line")
+      ->required();
+  command
+      ->add_option("--relations", args->relations,
+                   "Relation file: 't1 t2 dx dy dz roll pitch dyaw' per line")
+      ->required();
+  command
+      ->add_option("--tolerance", args->options.timestamp_tolerance_s,
+                   "Seconds within which a relation's timestamp matches a pose")
+      ->capture_default_str();
+  command->callback([args, &exit_code] {
+    exit_code = RunRelations(args->poses, args->relations, args->options);
+  });
+}
+
+void AddAte(CLI::App& eval, int& exit_code) {
+  CLI::App* command = eval.add_subcommand(
+      "ate",
+      "Absolute trajectory error against the truth (RMSE, mean, max in m; heading RMSE "
+      "in deg) as one JSON object");
+  struct Args {
+    std::string poses, truth;
+    eval::AteOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  command->add_option("--poses", args->poses, "Estimated trajectory ('timestamp x y theta')")
+      ->required();
+  command->add_option("--truth", args->truth, "True trajectory, e.g. RUN/truth.txt")->required();
+  command->add_flag("--align", args->options.align,
+                    "First fit the estimate to the truth with the best SE(2) transform");
+  command
+      ->add_option("--tolerance", args->options.timestamp_tolerance_s,
+                   "Seconds within which the nearest truth pose is used as is")
+      ->capture_default_str();
+  command
+      ->add_option("--max-gap", args->options.max_interpolation_gap_s,
+                   "Longest gap (s) between truth poses to interpolate across")
+      ->capture_default_str();
   command->callback(
-      [&exit_code] { exit_code = ReportError(Status::Error("'eval' is not built yet")); });
+      [args, &exit_code] { exit_code = RunAte(args->poses, args->truth, args->options); });
+}
+
+}  // namespace
+
+void AddEvalCommand(CLI::App& app, int& exit_code) {
+  CLI::App* command = app.add_subcommand("eval", "Score a trajectory: relation metric or ATE");
+  command->require_subcommand(1);
+  AddRelations(*command, exit_code);
+  AddAte(*command, exit_code);
 }
 
 }  // namespace semchain::app
