@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -79,6 +80,9 @@ struct RobotSpec {
 
 struct World {
   std::string name;
+  // Seeds the surfaces' procedural textures (a solid without its own texture_seed gets one
+  // derived from this and its index), so two worlds that differ only here look different.
+  std::uint32_t seed = 0;
   std::vector<std::vector<Eigen::Vector2d>> walls;  // polylines
   double wall_height = 2.5;
   double wall_thickness = 0.0;   // 0 = infinitely thin segments
@@ -91,8 +95,9 @@ struct World {
   std::vector<Eigen::Vector2d> trial_region;  // polygon
 };
 
-// Loads a world; unknown keys, malformed numbers, a wall with fewer than two points, … are
-// errors naming the file, line and key path ("w.yaml:7: objects[2].radius: not a number").
+// Loads a world (src/sim/world_io.cc); unknown keys, malformed numbers, a wall with fewer than two
+// points, … are errors naming the file, line and key path ("w.yaml:7: objects[2].radius: not a
+// number").
 Result<World> LoadWorld(const std::filesystem::path& path);
 Result<World> ParseWorld(const std::string& yaml_text, const std::string& source_name);
 
