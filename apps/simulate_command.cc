@@ -6,6 +6,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "core/atomic_file.h"
 #include "sim/simulator.h"
 #include "sim/world.h"
 #include "sim/world_io.h"
@@ -48,6 +49,9 @@ Status RunSimulate(const SimulateArgs& args) {
   options.seed = args.seed;
   options.route = *route;
   options.write_frames = !args.no_frames;
+  Result<std::string> world_yaml = ReadFile(args.world);
+  if (!world_yaml.ok()) return world_yaml.status();
+  options.world_yaml = std::move(*world_yaml);
   SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(*world, options, args.out));
   std::printf("wrote %s\n", args.out.c_str());
   return Status::Ok();

@@ -138,6 +138,9 @@ Status WriteRun(const Scene& scene, const std::vector<TrajectorySample>& samples
   SEMCHAIN_RETURN_IF_ERROR(WriteTrajectory(dir / "truth.txt", truth));
   if (frames) SEMCHAIN_RETURN_IF_ERROR(frames->Close());
   const int frame_count = frames ? frames->count() : 0;
+  if (!options.world_yaml.empty()) {
+    SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(dir / "world.yaml", options.world_yaml));
+  }
   SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(
       dir / "camera.yaml",
       FormatCameraYaml(MakeMountedCamera(world.robot.camera), world.robot.frame_rate_hz)));

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "core/pose2.h"
 #include "core/status.h"
@@ -28,6 +29,9 @@ struct SimulationOptions {
   TrialOptions trial;
   bool write_frames = true;   // false: no frames/ and no detections.jsonl (`--no-frames`)
   bool show_progress = true;  // a progress bar on stderr when it is a terminal
+  // The world file's text; when set it is copied to RUN/world.yaml so that the run carries
+  // its world (render draws it, later stages read the objects' truth from it).
+  std::string world_yaml;
 };
 
 // The independent random streams of a run (MakeRng(seed, stream)).
