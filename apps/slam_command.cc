@@ -1,12 +1,142 @@
+// semchain slam --log L.clf --out MAP [--particles N] [--config C.yaml] [--seed S] ...
+// RBPF SLAM (seed 003, DESIGN.md §3.2) on a CARMEN log: writes MAP/map.yaml + map.pgm
+// (map_server), MAP/map.png, MAP/trajectory.txt (a pose for every scan) and MAP/slam.json.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <optional>
+
 #include "apps/command.h"
+#include "core/atomic_file.h"
+#include "core/progress_bar.h"
+#include "io/carmen.h"
+#include "io/trajectory_io.h"
+#include "mapping/map_io.h"
+#include "mapping/slam_options_io.h"
+#include "mapping/slam_pipeline.h"
 
 namespace semchain::app {
+namespace {
 
-// Placeholder until the slam work lands: the subcommand exists and explains itself.
+struct SlamArgs {
+  std::string log;
+  std::string out;
+  std::string config;
+  std::string variant;
+  std::string every_scan;
+  std::optional<int> particles;
+  std::optional<int> seed;
+  std::optional<int> threads;
+  std::optional<int> max_scans;
+};
+
+Result<mapping::SlamOptions> BuildOptions(const SlamArgs& args) {
+  mapping::SlamOptions options;
+  if (!args.config.empty()) {
+    SEMCHAIN_RETURN_IF_ERROR(mapping::LoadSlamOptions(args.config, &options));
+  }
+  if (!args.variant.empty())
+    SEMCHAIN_RETURN_IF_ERROR(mapping::ApplyVariant(args.variant, &options));
+  if (args.particles) options.rbpf.particles = *args.particles;
+  if (args.seed) options.rbpf.seed = static_cast<std::uint64_t>(*args.seed);
+  if (args.threads) options.rbpf.threads = *args.threads;
+  if (!args.every_scan.empty()) options.every_scan.method = args.every_scan;
+  std::string error;
+  if (!options.Validate(&error)) return Status::Error("invalid SLAM options: " + error);
+  return options;
+}
+
+std::string StatisticsJson(const mapping::SlamResult& result, const mapping::SlamOptions& options,
+                           double seconds) {
+  const mapping::RbpfStatistics& s = result.statistics;
+  nlohmann::json json = {{"scans", s.scans},
+                         {"processed", s.processed},
+                         {"localized", result.localized},
+                         {"particles", options.rbpf.particles},
+                         {"seed", options.rbpf.seed},
+                         {"annealing", options.rbpf.annealing.enabled},
+                         {"genetic", options.rbpf.genetic.enabled},
+                         {"resamplings", s.resamplings},
+                         {"genetic_resamplings", s.genetic_resamplings},
+                         {"crossovers", s.crossovers},
+                         {"mutations", s.mutations},
+                         {"unmatched_updates", s.unmatched},
+                         {"mean_effective_sample_size", s.mean_effective_sample_size},
+                         {"mean_alpha", s.mean_alpha},
+                         {"every_scan", options.every_scan.method},
+                         {"laser_odometry_rejected", result.laser_odometry_rejected},
+                         {"laser_odometry_seconds", result.laser_odometry_seconds},
+                         {"filter_seconds", result.filter_seconds},
+                         {"every_scan_seconds", result.every_scan_seconds},
+                         {"slam_seconds", seconds}};
+  return json.dump(2) + "\n";
+}
+
+Status WriteOutputs(const std::filesystem::path& out, const mapping::SlamResult& result,
+                    const std::string& statistics) {
+  const mapping::MapImage image = mapping::GridToMapImage(result.map);
+  SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(out / "map.yaml", image));
+  SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMapPng(out / "map.png", image));
+  SEMCHAIN_RETURN_IF_ERROR(WriteTrajectory(out / "trajectory.txt", result.trajectory));
+  return WriteFileAtomically(out / "slam.json", statistics);
+}
+
+int RunSlamCommand(const SlamArgs& args) {
+  const Result<mapping::SlamOptions> options = BuildOptions(args);
+  if (!options.ok()) return ReportError(options.status());
+  const Result<carmen::Log> log = carmen::ReadLog(args.log);
+  if (!log.ok()) return ReportError(log.status());
+  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, args.log);
+  if (!scans.ok()) return ReportError(scans.status());
+  if (args.max_scans && static_cast<std::size_t>(*args.max_scans) < scans->size()) {
+    scans->resize(static_cast<std::size_t>(*args.max_scans));
+  }
+  const Status writable = EnsureWritableDirectory(args.out);
+  if (!writable.ok()) return ReportError(writable);
+  spdlog::info("slam: {} scans, {} particles, annealing {}, genetic resampling {}", scans->size(),
+               options->rbpf.particles, options->rbpf.annealing.enabled ? "on" : "off",
+               options->rbpf.genetic.enabled ? "on" : "off");
+  ProgressBar bar("slam", 2 * scans->size());
+  const auto start = std::chrono::steady_clock::now();
+  const mapping::SlamResult result =
+      mapping::RunSlam(*scans, *options, [&bar](std::size_t done) { bar.Update(done); });
+  bar.Finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Status written = WriteOutputs(args.out, result, StatisticsJson(result, *options, seconds));
+  if (!written.ok()) return ReportError(written);
+  spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",
+               result.statistics.processed, result.localized, scans->size(), seconds);
+  return 0;
+}
+
+}  // namespace
+
 void AddSlamCommand(CLI::App& app, int& exit_code) {
-  CLI::App* command = app.add_subcommand("slam", "(not yet available)");
-  command->callback(
-      [&exit_code] { exit_code = ReportError(Status::Error("'slam' is not built yet")); });
+  auto args = std::make_shared<SlamArgs>();
+  CLI::App* command = app.add_subcommand(
+      "slam", "RBPF SLAM on a CARMEN log: map_server map and a pose for every scan");
+  command->add_option("--log", args->log, "CARMEN log (.clf, .log, .gz)")->required();
+  command->add_option("--out", args->out, "Output folder for map.yaml/pgm, trajectory.txt")
+      ->required();
+  command->add_option("--config", args->config, "SLAM options YAML (see config/slam.yaml)");
+  command->add_option("--particles", args->particles, "Number of particles")
+      ->check(CLI::Range(1, 10000));
+  command->add_option("--seed", args->seed, "Random seed")->check(CLI::NonNegativeNumber);
+  command->add_option("--threads", args->threads, "Worker threads (0 = one per core)")
+      ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--variant", args->variant,
+                   "Seed 003 improvements: plain (GMapping), annealing, genetic, both")
+      ->check(CLI::IsMember({"plain", "annealing", "genetic", "both"}));
+  command
+      ->add_option("--every-scan", args->every_scan,
+                   "Poses of unprocessed scans: localize (in the final map) or interpolate")
+      ->check(CLI::IsMember({"localize", "interpolate"}));
+  command->add_option("--max-scans", args->max_scans, "Use only the first N scans of the log")
+      ->check(CLI::PositiveNumber);
+  command->callback([args, &exit_code] { exit_code = RunSlamCommand(*args); });
 }
 
 }  // namespace semchain::app

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "core/status.h"
+
+// The greyscale images behind map_server maps.
+namespace semchain::mapping {
+
+struct GrayImage {
+  int width = 0;
+  int height = 0;
+  // Row-major from the top row; for colour images the mean of the channels (as map_server).
+  std::vector<double> pixels;
+};
+
+// Reads a binary (P5) or ASCII (P2) PGM with maxval <= 255 with our own parser (exact), and
+// anything else OpenCV can decode (PNG, BMP…). Alpha channels are ignored.
+Result<GrayImage> ReadGrayImage(const std::filesystem::path& path);
+
+// Writes a binary PGM atomically ("P5", a comment with the resolution, maxval 255); pixel
+// values are rounded to 0..255.
+Status WritePgm(const std::filesystem::path& path, const GrayImage& image, double resolution);
+
+}  // namespace semchain::mapping

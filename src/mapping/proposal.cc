@@ -1,0 +1,116 @@
+#include "mapping/proposal.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "core/angles.h"
+
+namespace semchain::mapping {
+
+bool ProposalOptions::Validate(std::string* error) const {
+  if (samples < 2) {
+    *error = "samples must be >= 2";
+    return false;
+  }
+  if (!(sample_window_meters > 0.0 && sample_window_radians > 0.0)) {
+    *error = "sample_window_meters and sample_window_radians must be positive";
+    return false;
+  }
+  if (!(observation_gain > 0.0)) {
+    *error = "observation_gain must be positive";
+    return false;
+  }
+  if (min_matched_points < 0 || !(min_sigma_meters > 0.0 && min_sigma_radians > 0.0)) {
+    *error = "min_matched_points must be >= 0 and the minimum sigmas positive";
+    return false;
+  }
+  return true;
+}
+
+ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoints& points,
+                                    const MotionModel& motion, const Pose2& previous,
+                                    const Pose2& increment, const HillClimbingOptions& matcher,
+                                    const ProposalOptions& options, Rng& rng) {
+  ProposalEvaluation evaluation;
+  const Pose2 prediction = MotionModel::Predict(previous, increment);
+  evaluation.mode = prediction;
+  double window_xy = 3.0 * motion.Sigmas(increment).x();
+  double window_theta = 3.0 * motion.Sigmas(increment).z();
+  if (options.use_scan_matching) {
+    const Pose2 start =
+        options.match_from_motion_sample ? motion.Sample(previous, increment, rng) : prediction;
+    const MatchResult match = HillClimb(field, points, start, matcher);
+    evaluation.matched = match.evaluation.matched >= options.min_matched_points;
+    if (evaluation.matched) {
+      evaluation.mode = match.pose;
+      window_xy = options.sample_window_meters;
+      window_theta = options.sample_window_radians;
+    }
+  }
+  evaluation.log_volume = std::log(8.0 * window_xy * window_xy * window_theta);
+  auto evaluate = [&](const Pose2& pose) {
+    const double observation = field.Evaluate(points, pose).log_likelihood;
+    evaluation.samples.push_back({pose, options.observation_gain * observation,
+                                  motion.LogDensity(pose, previous, increment)});
+  };
+  evaluate(evaluation.mode);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int j = 0; j < options.samples; ++j) {
+    evaluate(Pose2(evaluation.mode.x + window_xy * unit(rng),
+                   evaluation.mode.y + window_xy * unit(rng),
+                   evaluation.mode.theta + window_theta * unit(rng)));
+  }
+  return evaluation;
+}
+
+GaussianFit FitProposal(const ProposalEvaluation& evaluation, double observation_exponent,
+                        double motion_exponent, const ProposalOptions& options) {
+  const auto& samples = evaluation.samples;
+  std::vector<double> log_f(samples.size());
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    log_f[j] =
+        observation_exponent * samples[j].log_observation + motion_exponent * samples[j].log_motion;
+  }
+  const double max = *std::max_element(log_f.begin(), log_f.end());
+  double sum = 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> offsets(samples.size());
+  std::vector<double> weights(samples.size());
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    weights[j] = std::exp(log_f[j] - max);
+    const Pose2& x = samples[j].pose;
+    offsets[j] = Eigen::Vector3d(x.x - evaluation.mode.x, x.y - evaluation.mode.y,
+                                 AngleDifference(x.theta, evaluation.mode.theta));
+    mean += weights[j] * offsets[j];  // eq. 4, μ
+    sum += weights[j];
+  }
+  mean /= sum;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    const Eigen::Vector3d d = offsets[j] - mean;
+    covariance += weights[j] * d * d.transpose();  // eq. 4, Σ
+  }
+  covariance /= sum;
+  covariance(0, 0) += options.min_sigma_meters * options.min_sigma_meters;
+  covariance(1, 1) += options.min_sigma_meters * options.min_sigma_meters;
+  covariance(2, 2) += options.min_sigma_radians * options.min_sigma_radians;
+  GaussianFit fit;
+  fit.mean = mean + Eigen::Vector3d(evaluation.mode.x, evaluation.mode.y, evaluation.mode.theta);
+  fit.covariance = covariance;
+  // Eq. 5: η ≈ (V / K) Σ_j f(x_j), computed in the log domain.
+  fit.log_normalizer =
+      evaluation.log_volume + max + std::log(sum / static_cast<double>(samples.size()));
+  return fit;
+}
+
+Pose2 SampleGaussian(const GaussianFit& fit, Rng& rng) {
+  const Eigen::Matrix3d lower = fit.covariance.llt().matrixL();
+  std::normal_distribution<double> normal;
+  const Eigen::Vector3d z(normal(rng), normal(rng), normal(rng));
+  const Eigen::Vector3d x = fit.mean + lower * z;
+  return Pose2(x.x(), x.y(), x.z());
+}
+
+}  // namespace semchain::mapping

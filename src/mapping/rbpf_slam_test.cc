@@ -1,0 +1,133 @@
+#include "mapping/rbpf_slam.h"
+
+#include <gtest/gtest.h>
+
+#include "core/angles.h"
+#include "mapping/laser_odometry.h"
+#include "mapping/resampling.h"
+#include "mapping/slam_pipeline.h"
+#include "mapping/testing/synthetic_world.h"
+
+namespace semchain::mapping {
+namespace {
+
+// The largest error of the relative motion over 'span' scans (the relation metric's idea).
+double MaxRelativeError(const std::vector<Pose2>& estimate, const std::vector<Pose2>& truth,
+                        std::size_t span) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i + span < truth.size(); ++i) {
+    const Pose2 e =
+        truth[i].Between(truth[i + span]).Between(estimate[i].Between(estimate[i + span]));
+    worst = std::max(worst, std::hypot(e.x, e.y));
+  }
+  return worst;
+}
+
+double MaxPositionError(const std::vector<Pose2>& estimate, const std::vector<Pose2>& truth) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    worst = std::max(worst, (estimate[i].translation() - truth[i].translation()).norm());
+  }
+  return worst;
+}
+
+RbpfOptions SmallFilter(int particles) {
+  RbpfOptions options;
+  options.particles = particles;
+  options.threads = 2;
+  options.linear_update_meters = 0.3;
+  options.angular_update_radians = 0.2;
+  options.match_beam_step = 2;
+  return options;
+}
+
+TEST(LaserOdometryTest, RemovesTheWheelOdometryDrift) {
+  const testing::SimulatedRun run = testing::SimulateRoomRun();
+  std::vector<PreparedScan> prepared;
+  for (const StampedScan& s : run.scans) prepared.push_back(PrepareScan(s.scan, Pose2(), {}));
+  std::vector<Pose2> odometry;
+  for (const StampedScan& s : run.scans) odometry.push_back(s.odometry);
+  EXPECT_GT(MaxPositionError(odometry, run.truth), 0.5);
+  const std::vector<Pose2> laser = ComputeLaserOdometry(run.scans, prepared, {}, {}, {});
+  EXPECT_LT(MaxPositionError(laser, run.truth), 0.1);
+}
+
+TEST(RbpfSlamTest, WeightsStayNormalised) {
+  const testing::SimulatedRun run = testing::SimulateRoomRun(0.2);
+  for (const bool genetic : {false, true}) {
+    RbpfOptions options = SmallFilter(8);
+    options.genetic.enabled = genetic;
+    options.annealing.enabled = genetic;
+    RbpfSlam slam(options);
+    for (std::size_t i = 0; i < run.scans.size(); ++i) {
+      if (!slam.AddScan(run.scans[i], static_cast<int>(i))) continue;
+      std::vector<double> log_weights;
+      for (const Particle& p : slam.particles()) log_weights.push_back(p.log_weight);
+      const std::vector<double> weights = NormalizeLogWeights(log_weights, options.weight_gain);
+      double sum = 0.0;
+      for (const double w : weights) {
+        ASSERT_TRUE(std::isfinite(w));
+        sum += w;
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-9);
+      const double neff = EffectiveSampleSize(weights);
+      EXPECT_GE(neff, 1.0 - 1e-9);
+      EXPECT_LE(neff, options.particles + 1e-9);
+    }
+    EXPECT_GT(slam.statistics().processed, 20);
+  }
+}
+
+TEST(RbpfSlamTest, SameSeedSameResultWhateverTheThreadCount) {
+  const testing::SimulatedRun run = testing::SimulateRoomRun();
+  std::vector<Pose2> first;
+  for (const int threads : {1, 3}) {
+    RbpfOptions options = SmallFilter(6);
+    options.threads = threads;
+    RbpfSlam slam(options);
+    for (std::size_t i = 0; i < 60; ++i) slam.AddScan(run.scans[i], static_cast<int>(i));
+    std::vector<Pose2> poses;
+    for (const Particle& p : slam.particles()) poses.push_back(p.pose);
+    if (first.empty()) {
+      first = poses;
+      continue;
+    }
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      EXPECT_DOUBLE_EQ(poses[i].x, first[i].x);
+      EXPECT_DOUBLE_EQ(poses[i].theta, first[i].theta);
+    }
+  }
+}
+
+TEST(SlamPipelineTest, EveryScanGetsAnAccuratePose) {
+  const testing::SimulatedRun run = testing::SimulateRoomRun(0.2);
+  SlamOptions options;
+  options.rbpf = SmallFilter(8);
+  for (const bool laser_odometry : {true, false}) {
+    options.laser_odometry.enabled = laser_odometry;
+    const SlamResult result = RunSlam(run.scans, options);
+    ASSERT_EQ(result.trajectory.size(), run.scans.size());
+    std::vector<Pose2> poses;
+    for (const StampedPose& p : result.trajectory) poses.push_back(p.pose);
+    EXPECT_LT(MaxPositionError(poses, run.truth), 0.1) << laser_odometry;
+    EXPECT_LT(MaxRelativeError(poses, run.truth, 5), 0.02) << laser_odometry;
+    EXPECT_LT(result.processed.size(), run.scans.size());
+    EXPECT_GT(result.localized, static_cast<int>(run.scans.size()) - 5);
+  }
+}
+
+TEST(ScanLocalizerTest, InterpolationReanchorsOdometryOnCorrectedScans) {
+  // Odometry with a constant offset; the corrected poses remove it, linearly in time between.
+  const std::vector<Pose2> odometry = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+  const std::vector<double> times = {0, 1, 2, 3};
+  const std::vector<Pose2> poses =
+      InterpolateTrajectory(odometry, times, {{0, Pose2(0, 1, 0)}, {2, Pose2(2, 3, 0)}});
+  EXPECT_NEAR(poses[0].y, 1.0, 1e-12);
+  EXPECT_NEAR(poses[1].y, 2.0, 1e-12);
+  EXPECT_NEAR(poses[2].y, 3.0, 1e-12);
+  EXPECT_NEAR(poses[3].y, 3.0, 1e-12);  // after the last corrected scan: its correction
+  EXPECT_NEAR(poses[3].x, 3.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace semchain::mapping

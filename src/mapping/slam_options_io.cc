@@ -1,0 +1,212 @@
+#include "mapping/slam_options_io.h"
+
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace semchain::mapping {
+namespace {
+
+using Target = std::variant<double*, int*, bool*, std::string*>;
+using Fields = std::vector<std::pair<std::string, Target>>;
+
+// Reads the keys 'fields' of map 'node' (a missing or null node leaves everything as is).
+Status ReadFields(const yaml::Node& node, const Fields& fields) {
+  if (node.IsNull()) return Status::Ok();
+  if (!node.IsMap()) return node.Error("expected a map");
+  std::vector<std::string> allowed;
+  for (const auto& [key, target] : fields) allowed.push_back(key);
+  SEMCHAIN_RETURN_IF_ERROR(node.CheckKeys(allowed));
+  for (const auto& [key, target] : fields) {
+    SEMCHAIN_RETURN_IF_ERROR(
+        std::visit([&](auto* value) { return yaml::ReadOptional(node, key, value); }, target));
+  }
+  return Status::Ok();
+}
+
+Status ReadSection(const yaml::Node& root, const std::string& key, const Fields& fields) {
+  if (!root.Has(key)) return Status::Ok();
+  const Result<yaml::Node> node = root.Get(key);
+  if (!node.ok()) return node.status();
+  return ReadFields(*node, fields);
+}
+
+Fields MatcherFields(HillClimbingOptions* m) {
+  return {{"linear_step_meters", &m->linear_step_meters},
+          {"angular_step_radians", &m->angular_step_radians},
+          {"refinements", &m->refinements},
+          {"max_evaluations", &m->max_evaluations}};
+}
+
+Fields MotionFields(MotionModelOptions* m) {
+  return {{"translation_per_meter", &m->translation_per_meter},
+          {"translation_per_radian", &m->translation_per_radian},
+          {"rotation_per_meter", &m->rotation_per_meter},
+          {"rotation_per_radian", &m->rotation_per_radian},
+          {"min_translation_sigma_meters", &m->min_translation_sigma_meters},
+          {"min_rotation_sigma_radians", &m->min_rotation_sigma_radians}};
+}
+
+Fields RefinementFields(SurfaceRefinementOptions* r) {
+  return {{"enabled", &r->enabled},
+          {"iterations", &r->iterations},
+          {"huber_meters", &r->huber_meters},
+          {"convergence_meters", &r->convergence_meters},
+          {"max_correction_meters", &r->max_correction_meters},
+          {"lines_only", &r->lines_only}};
+}
+
+Status ReadModelSections(const yaml::Node& root, RbpfOptions* o) {
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(root, "grid",
+                                       {{"resolution_meters", &o->grid.resolution_meters},
+                                        {"hit_log_odds", &o->grid.hit_log_odds},
+                                        {"miss_log_odds", &o->grid.miss_log_odds},
+                                        {"max_abs_log_odds", &o->grid.max_abs_log_odds}}));
+  SEMCHAIN_RETURN_IF_ERROR(
+      ReadSection(root, "scan",
+                  {{"min_range_meters", &o->scan.min_range_meters},
+                   {"max_range_meters", &o->scan.max_range_meters},
+                   {"no_return_clear_meters", &o->scan.no_return_clear_meters}}));
+  LikelihoodFieldOptions& f = o->field;
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(root, "likelihood_field",
+                                       {{"kernel_cells", &f.kernel_cells},
+                                        {"obstacle_log_odds", &f.obstacle_log_odds},
+                                        {"require_free_in_front", &f.require_free_in_front},
+                                        {"interpolate_surface", &f.interpolate_surface},
+                                        {"score_sigma_meters", &f.score_sigma_meters},
+                                        {"likelihood_sigma_meters", &f.likelihood_sigma_meters},
+                                        {"max_distance_meters", &f.max_distance_meters}}));
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(root, "matcher", MatcherFields(&o->matcher)));
+  return ReadSection(root, "motion", MotionFields(&o->motion));
+}
+
+Status ReadFilterSections(const yaml::Node& root, RbpfOptions* o) {
+  ProposalOptions& p = o->proposal;
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(root, "proposal",
+                                       {{"use_scan_matching", &p.use_scan_matching},
+                                        {"samples", &p.samples},
+                                        {"match_from_motion_sample", &p.match_from_motion_sample},
+                                        {"sample_window_meters", &p.sample_window_meters},
+                                        {"sample_window_radians", &p.sample_window_radians},
+                                        {"observation_gain", &p.observation_gain},
+                                        {"min_matched_points", &p.min_matched_points},
+                                        {"min_sigma_meters", &p.min_sigma_meters},
+                                        {"min_sigma_radians", &p.min_sigma_radians}}));
+  AnnealingOptions& a = o->annealing;
+  SEMCHAIN_RETURN_IF_ERROR(
+      ReadSection(root, "annealing",
+                  {{"enabled", &a.enabled},
+                   {"rule", &a.rule},
+                   {"alpha", &a.alpha},
+                   {"motion_dominant_alpha", &a.motion_dominant_alpha},
+                   {"observation_dominant_alpha", &a.observation_dominant_alpha},
+                   {"flat_fraction", &a.flat_fraction}}));
+  GeneticResamplingOptions& g = o->genetic;
+  return ReadSection(root, "genetic",
+                     {{"enabled", &g.enabled},
+                      {"high_weight_factor", &g.high_weight_factor},
+                      {"low_weight_factor", &g.low_weight_factor},
+                      {"crossover_rate_1", &g.crossover_rate_1},
+                      {"crossover_rate_2", &g.crossover_rate_2},
+                      {"mutation_rate_1", &g.mutation_rate_1},
+                      {"mutation_rate_2", &g.mutation_rate_2},
+                      {"beta", &g.beta},
+                      {"crossover_max_blend", &g.crossover_max_blend},
+                      {"crossover_max_distance_meters", &g.crossover_max_distance_meters},
+                      {"crossover_max_angle_radians", &g.crossover_max_angle_radians},
+                      {"mutation_sigma_meters", &g.mutation_sigma_meters},
+                      {"mutation_sigma_radians", &g.mutation_sigma_radians}});
+}
+
+Status ReadEveryScan(const yaml::Node& root, EveryScanOptions* e) {
+  if (!root.Has("every_scan")) return Status::Ok();
+  const Result<yaml::Node> node = root.Get("every_scan");
+  if (!node.ok()) return node.status();
+  if (node->IsNull()) return Status::Ok();
+  if (!node->IsMap()) return node->Error("expected a map");
+  SEMCHAIN_RETURN_IF_ERROR(
+      node->CheckKeys({"method", "refinement_passes", "min_matched_points",
+                       "match_max_range_meters", "match_beam_step", "matcher", "refinement"}));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "method", &e->method));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "refinement_passes", &e->refinement_passes));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_matched_points", &e->min_matched_points));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "match_max_range_meters", &e->match_max_range_meters));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &e->match_beam_step));
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(*node, "refinement", RefinementFields(&e->refinement)));
+  return ReadSection(*node, "matcher", MatcherFields(&e->matcher));
+}
+
+Status ReadLaserOdometry(const yaml::Node& root, LaserOdometryOptions* l) {
+  if (!root.Has("laser_odometry")) return Status::Ok();
+  const Result<yaml::Node> node = root.Get("laser_odometry");
+  if (!node.ok()) return node.status();
+  if (node->IsNull()) return Status::Ok();
+  if (!node->IsMap()) return node->Error("expected a map");
+  SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys({"enabled", "scans_per_submap", "min_matched_points",
+                                            "match_max_range_meters", "match_beam_step", "matcher",
+                                            "refinement", "prior"}));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "enabled", &l->enabled));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "scans_per_submap", &l->scans_per_submap));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_matched_points", &l->min_matched_points));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "match_max_range_meters", &l->match_max_range_meters));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &l->match_beam_step));
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(*node, "refinement", RefinementFields(&l->refinement)));
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(*node, "prior", MotionFields(&l->prior)));
+  return ReadSection(*node, "matcher", MatcherFields(&l->matcher));
+}
+
+}  // namespace
+
+Status ReadSlamOptions(const yaml::Node& root, SlamOptions* options) {
+  if (root.IsNull()) return Status::Ok();
+  if (!root.IsMap()) return root.Error("expected a map of SLAM options");
+  RbpfOptions& o = options->rbpf;
+  SEMCHAIN_RETURN_IF_ERROR(root.CheckKeys(
+      {"particles", "seed", "threads", "linear_update_meters", "angular_update_radians",
+       "resample_threshold", "weight_gain", "match_max_range_meters", "match_beam_step", "grid",
+       "scan", "likelihood_field", "matcher", "motion", "proposal", "annealing", "genetic",
+       "every_scan", "laser_odometry"}));
+  int seed = static_cast<int>(o.seed);
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "particles", &o.particles));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "seed", &seed));
+  if (seed < 0) return root.Error("seed must be >= 0");
+  o.seed = static_cast<std::uint64_t>(seed);
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "threads", &o.threads));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(root, "linear_update_meters", &o.linear_update_meters));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(root, "angular_update_radians", &o.angular_update_radians));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "resample_threshold", &o.resample_threshold));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "weight_gain", &o.weight_gain));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(root, "match_max_range_meters", &o.match_max_range_meters));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "match_beam_step", &o.match_beam_step));
+  SEMCHAIN_RETURN_IF_ERROR(ReadModelSections(root, &o));
+  SEMCHAIN_RETURN_IF_ERROR(ReadFilterSections(root, &o));
+  SEMCHAIN_RETURN_IF_ERROR(ReadEveryScan(root, &options->every_scan));
+  SEMCHAIN_RETURN_IF_ERROR(ReadLaserOdometry(root, &options->laser_odometry));
+  std::string error;
+  if (!options->Validate(&error)) return root.Error(error);
+  return Status::Ok();
+}
+
+Status LoadSlamOptions(const std::filesystem::path& path, SlamOptions* options) {
+  const Result<yaml::Node> root = yaml::Node::LoadFile(path);
+  if (!root.ok()) return root.status();
+  return ReadSlamOptions(*root, options);
+}
+
+Status ApplyVariant(const std::string& variant, SlamOptions* options) {
+  if (variant != "plain" && variant != "annealing" && variant != "genetic" && variant != "both") {
+    return Status::Error("unknown variant '" + variant +
+                         "' (expected plain, annealing, genetic or both)");
+  }
+  options->rbpf.annealing.enabled = variant == "annealing" || variant == "both";
+  options->rbpf.genetic.enabled = variant == "genetic" || variant == "both";
+  return Status::Ok();
+}
+
+}  // namespace semchain::mapping

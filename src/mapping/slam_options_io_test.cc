@@ -1,0 +1,76 @@
+#include "mapping/slam_options_io.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace semchain::mapping {
+namespace {
+
+const std::filesystem::path kConfigDir = std::filesystem::path(SEMCHAIN_SOURCE_DIR) / "config";
+
+TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
+  SlamOptions loaded;
+  loaded.rbpf.particles = 7;  // the file must set it back
+  loaded.every_scan.refinement.iterations = 1;
+  const Status status = LoadSlamOptions(kConfigDir / "slam.yaml", &loaded);
+  ASSERT_TRUE(status.ok()) << status.message();
+  const SlamOptions defaults;
+  EXPECT_EQ(loaded.rbpf.particles, defaults.rbpf.particles);
+  EXPECT_EQ(loaded.rbpf.match_beam_step, defaults.rbpf.match_beam_step);
+  EXPECT_DOUBLE_EQ(loaded.rbpf.weight_gain, defaults.rbpf.weight_gain);
+  EXPECT_DOUBLE_EQ(loaded.rbpf.field.likelihood_sigma_meters,
+                   defaults.rbpf.field.likelihood_sigma_meters);
+  EXPECT_DOUBLE_EQ(loaded.rbpf.proposal.sample_window_radians,
+                   defaults.rbpf.proposal.sample_window_radians);
+  EXPECT_DOUBLE_EQ(loaded.rbpf.genetic.beta, defaults.rbpf.genetic.beta);
+  EXPECT_EQ(loaded.every_scan.refinement.iterations, defaults.every_scan.refinement.iterations);
+  EXPECT_EQ(loaded.laser_odometry.scans_per_submap, defaults.laser_odometry.scans_per_submap);
+  EXPECT_DOUBLE_EQ(loaded.laser_odometry.refinement.max_correction_meters,
+                   defaults.laser_odometry.refinement.max_correction_meters);
+  EXPECT_DOUBLE_EQ(loaded.laser_odometry.prior.min_rotation_sigma_radians,
+                   defaults.laser_odometry.prior.min_rotation_sigma_radians);
+  EXPECT_EQ(loaded.every_scan.refinement.lines_only, defaults.every_scan.refinement.lines_only);
+}
+
+TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
+  for (const auto& entry : std::filesystem::directory_iterator(kConfigDir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("slam", 0) != 0 || entry.path().extension() != ".yaml") continue;
+    SlamOptions options;
+    const Status status = LoadSlamOptions(entry.path(), &options);
+    EXPECT_TRUE(status.ok()) << name << ": " << status.message();
+  }
+  SlamOptions gmapping;
+  ASSERT_TRUE(LoadSlamOptions(kConfigDir / "slam-gmapping.yaml", &gmapping).ok());
+  EXPECT_FALSE(gmapping.laser_odometry.enabled);
+}
+
+TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
+  SlamOptions options;
+  Result<yaml::Node> root =
+      yaml::Node::LoadString("particles: 10\ngenetic:\n  crosover_rate_1: 0.7\n", "c.yaml");
+  ASSERT_TRUE(root.ok());
+  Status status = ReadSlamOptions(*root, &options);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("c.yaml:3"), std::string::npos) << status.message();
+  EXPECT_NE(status.message().find("crosover_rate_1"), std::string::npos);
+  root = yaml::Node::LoadString("annealing: {rule: sometimes}\n", "d.yaml");
+  status = ReadSlamOptions(*root, &options);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("rule"), std::string::npos) << status.message();
+}
+
+TEST(SlamOptionsIoTest, VariantsSwitchTheImprovements) {
+  SlamOptions options;
+  ASSERT_TRUE(ApplyVariant("both", &options).ok());
+  EXPECT_TRUE(options.rbpf.annealing.enabled && options.rbpf.genetic.enabled);
+  ASSERT_TRUE(ApplyVariant("plain", &options).ok());
+  EXPECT_FALSE(options.rbpf.annealing.enabled || options.rbpf.genetic.enabled);
+  ASSERT_TRUE(ApplyVariant("genetic", &options).ok());
+  EXPECT_TRUE(options.rbpf.genetic.enabled && !options.rbpf.annealing.enabled);
+  EXPECT_FALSE(ApplyVariant("fancy", &options).ok());
+}
+
+}  // namespace
+}  // namespace semchain::mapping
