@@ -256,7 +256,7 @@ void AddBenchSlam(CLI::App& bench, int& exit_code) {
   auto args = std::make_shared<BenchSlamArgs>();
   CLI::App* command = bench.add_subcommand(
       "slam", "SLAM accuracy, time and memory over particle counts and seed 003 variants");
-  command->add_option("--log", args->log, "CARMEN log")->required()->check(CLI::ExistingFile);
+  command->add_option("--log", args->log, "CARMEN log")->required();
   command->add_option("--relations", args->relations, "Kümmerle relations file");
   command->add_option("--perturb-odometry", args->perturb_seed,
                       "Corrected log: replace its odometry by seeded synthetic odometry and "

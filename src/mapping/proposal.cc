@@ -26,7 +26,7 @@ bool ProposalOptions::Validate(std::string* error) const {
     *error = "min_matched_points must be >= 0 and the minimum sigmas positive";
     return false;
   }
-  return true;
+  return mode_refinement.Validate(error);
 }
 
 ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoints& points,
@@ -45,6 +45,11 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
     evaluation.matched = match.evaluation.matched >= options.min_matched_points;
     if (evaluation.matched) {
       evaluation.mode = match.pose;
+      if (options.mode_refinement.enabled) {
+        const PosePrior prior{prediction, motion.Sigmas(increment)};
+        evaluation.mode =
+            RefineOnSurface(field, points, match.pose, options.mode_refinement, &prior).pose;
+      }
       window_xy = options.sample_window_meters;
       window_theta = options.sample_window_radians;
     }

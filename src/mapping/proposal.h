@@ -9,6 +9,7 @@
 #include "mapping/hill_climbing_matcher.h"
 #include "mapping/likelihood_field.h"
 #include "mapping/motion_model.h"
+#include "mapping/surface_refinement.h"
 
 // The improved proposal of GMapping (Grisetti et al. 2007; seed 003 eq. 4–5, seed 004 eq. 4–5):
 // scan-match the odometry prediction against the particle's map, evaluate K poses x_j around the
@@ -25,6 +26,11 @@ struct ProposalOptions {
   // GMapping does): particles then find different local modes where there are several (a loop
   // closing with drift), which is where the filter needs its diversity.
   bool match_from_motion_sample = true;
+  // After hill climbing, refine the mode by Gauss-Newton with the (noise-free) prediction as a
+  // prior of the motion model's covariance: along directions the scan does not constrain (a
+  // corridor's axis) the mode returns to the prediction instead of keeping the random start,
+  // whose noise would otherwise accumulate there.
+  SurfaceRefinementOptions mode_refinement{true, 5, 0.02, 1e-4, 0.5, true};
   double sample_window_meters = 0.01;    // the x_j are uniform within ±this of the mode
   double sample_window_radians = 0.005;  // and ±this in heading
   // Multiplies log p(z | m, x) in the proposal (1 = the likelihood field as it is). Lower values

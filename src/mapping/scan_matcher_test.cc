@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "core/angles.h"
+#include "mapping/correlative_scan_matcher.h"
 #include "mapping/hill_climbing_matcher.h"
 #include "mapping/ray_casting.h"
 #include "mapping/testing/synthetic_world.h"
@@ -47,6 +48,24 @@ INSTANTIATE_TEST_SUITE_P(Offsets, HillClimbingRecoversOffsets,
                          ::testing::Values(Offset{0.0, 0.0, 0.0}, Offset{0.06, 0.0, 0.0},
                                            Offset{-0.05, 0.04, 0.0}, Offset{0.0, 0.0, 0.04},
                                            Offset{0.04, -0.05, -0.03}, Offset{-0.08, -0.02, 0.02}));
+
+TEST(CorrelativeSearchTest, RecoversOffsetsBeyondHillClimbing) {
+  const OccupancyGrid grid = RoomMap();
+  const LikelihoodField field(grid, {});
+  const Pose2 truth(0.37, -0.21, 0.3);
+  const PreparedScan scan =
+      PrepareScan(testing::SimulateScan(testing::RoomWorld(), truth), Pose2(), {});
+  CorrelativeSearchOptions options;
+  options.linear_window_meters = 0.4;
+  options.angular_window_radians = 0.25;
+  for (const Offset& o : {Offset{0.25, -0.2, 0.15}, Offset{-0.3, 0.1, -0.2}}) {
+    const Pose2 initial(truth.x + o.dx, truth.y + o.dy, truth.theta + o.dtheta);
+    const MatchResult result = CorrelativeSearch(field, scan, initial, options);
+    EXPECT_NEAR(result.pose.x, truth.x, 0.01);
+    EXPECT_NEAR(result.pose.y, truth.y, 0.01);
+    EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, DegToRad(0.3));
+  }
+}
 
 TEST(LikelihoodFieldTest, TruthScoresBestAndLikelihoodPeaksThere) {
   const OccupancyGrid grid = RoomMap();

@@ -11,25 +11,36 @@ namespace {
 using Target = std::variant<double*, int*, bool*, std::string*>;
 using Fields = std::vector<std::pair<std::string, Target>>;
 
-// Reads the keys 'fields' of map 'node' (a missing or null node leaves everything as is).
-Status ReadFields(const yaml::Node& node, const Fields& fields) {
+using Sections = std::vector<std::pair<std::string, Fields>>;
+
+// Reads the keys 'fields' of map 'node', and the maps 'sections' nested in it (a missing or
+// null node leaves everything as is).
+Status ReadFields(const yaml::Node& node, const Fields& fields, const Sections& sections = {}) {
   if (node.IsNull()) return Status::Ok();
   if (!node.IsMap()) return node.Error("expected a map");
   std::vector<std::string> allowed;
   for (const auto& [key, target] : fields) allowed.push_back(key);
+  for (const auto& [key, section] : sections) allowed.push_back(key);
   SEMCHAIN_RETURN_IF_ERROR(node.CheckKeys(allowed));
   for (const auto& [key, target] : fields) {
     SEMCHAIN_RETURN_IF_ERROR(
         std::visit([&](auto* value) { return yaml::ReadOptional(node, key, value); }, target));
   }
+  for (const auto& [key, section] : sections) {
+    if (!node.Has(key)) continue;
+    const Result<yaml::Node> child = node.Get(key);
+    if (!child.ok()) return child.status();
+    SEMCHAIN_RETURN_IF_ERROR(ReadFields(*child, section));
+  }
   return Status::Ok();
 }
 
-Status ReadSection(const yaml::Node& root, const std::string& key, const Fields& fields) {
+Status ReadSection(const yaml::Node& root, const std::string& key, const Fields& fields,
+                   const Sections& sections = {}) {
   if (!root.Has(key)) return Status::Ok();
   const Result<yaml::Node> node = root.Get(key);
   if (!node.ok()) return node.status();
-  return ReadFields(*node, fields);
+  return ReadFields(*node, fields, sections);
 }
 
 Fields MatcherFields(HillClimbingOptions* m) {
@@ -83,16 +94,18 @@ Status ReadModelSections(const yaml::Node& root, RbpfOptions* o) {
 
 Status ReadFilterSections(const yaml::Node& root, RbpfOptions* o) {
   ProposalOptions& p = o->proposal;
-  SEMCHAIN_RETURN_IF_ERROR(ReadSection(root, "proposal",
-                                       {{"use_scan_matching", &p.use_scan_matching},
-                                        {"samples", &p.samples},
-                                        {"match_from_motion_sample", &p.match_from_motion_sample},
-                                        {"sample_window_meters", &p.sample_window_meters},
-                                        {"sample_window_radians", &p.sample_window_radians},
-                                        {"observation_gain", &p.observation_gain},
-                                        {"min_matched_points", &p.min_matched_points},
-                                        {"min_sigma_meters", &p.min_sigma_meters},
-                                        {"min_sigma_radians", &p.min_sigma_radians}}));
+  SEMCHAIN_RETURN_IF_ERROR(
+      ReadSection(root, "proposal",
+                  {{"use_scan_matching", &p.use_scan_matching},
+                   {"samples", &p.samples},
+                   {"match_from_motion_sample", &p.match_from_motion_sample},
+                   {"sample_window_meters", &p.sample_window_meters},
+                   {"sample_window_radians", &p.sample_window_radians},
+                   {"observation_gain", &p.observation_gain},
+                   {"min_matched_points", &p.min_matched_points},
+                   {"min_sigma_meters", &p.min_sigma_meters},
+                   {"min_sigma_radians", &p.min_sigma_radians}},
+                  {{"mode_refinement", RefinementFields(&p.mode_refinement)}}));
   AnnealingOptions& a = o->annealing;
   SEMCHAIN_RETURN_IF_ERROR(
       ReadSection(root, "annealing",
