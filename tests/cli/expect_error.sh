@@ -7,7 +7,9 @@ set -u
 pattern="$1"
 output="$2"
 shift 3
-rm -rf "$output" 2>/dev/null
+if [ "$output" != "-" ]; then
+  rm -rf "$output" 2>/dev/null
+fi
 stderr_file="$(mktemp)"
 trap 'rm -f "$stderr_file"' EXIT
 "$@" >/dev/null 2>"$stderr_file" </dev/null
