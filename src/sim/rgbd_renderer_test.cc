@@ -23,13 +23,7 @@ World Hall() {
 }
 
 Solid Box(double x, double y, double width, double depth, double height) {
-  Solid solid;
-  solid.class_name = "cabinet";
-  solid.footprint.center = {x, y};
-  solid.footprint.width = width;
-  solid.footprint.depth = depth;
-  solid.height = height;
-  return solid;
+  return MakeBoxSolid("cabinet", x, y, width, depth, height);
 }
 
 // A camera 0.5 m above the floor, 320 × 240, 60° wide, 6 m range (CameraSpec's defaults).

@@ -15,13 +15,7 @@ World SquareRoom() {
 }
 
 Solid Box(double x, double y, double width, double depth, double height) {
-  Solid solid;
-  solid.class_name = "cabinet";
-  solid.footprint.center = {x, y};
-  solid.footprint.width = width;
-  solid.footprint.depth = depth;
-  solid.height = height;
-  return solid;
+  return MakeBoxSolid("cabinet", x, y, width, depth, height);
 }
 
 TEST(SceneTest, WallAtKnownDistance) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/pose2.h"
@@ -33,6 +34,19 @@ struct Solid {
   std::uint32_t texture_seed = 0;  // derived from the world seed and index when not given
   std::array<std::uint8_t, 3> color = {200, 200, 200};  // base colour (RGB) of its texture
 };
+
+// A box solid of 'class_name' (empty for an obstacle) centred at (x, y), axis-aligned:
+// 'width' along x, 'depth' along y, 'height' above the floor.
+inline Solid MakeBoxSolid(std::string class_name, double x, double y, double width, double depth,
+                          double height) {
+  Solid solid;
+  solid.class_name = std::move(class_name);
+  solid.footprint.center = {x, y};
+  solid.footprint.width = width;
+  solid.footprint.depth = depth;
+  solid.height = height;
+  return solid;
+}
 
 struct LidarSpec {
   double height = 0.19;  // metres above the floor (the scan plane)
