@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The end-to-end demo on a bundled world: simulate a mapping run, build the map with SLAM,
 # score it against the simulator's truth, and draw world, run and map as PNG.
-#   scripts/demo.sh [OUTPUT_DIR]   (default: demo/)
+#   scripts/demo.sh [OUTPUT_DIR [WORLD.yaml]]   (defaults: demo/, worlds/two_similar_rooms.yaml)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="${1:-$root/demo}"
 semchain="$root/build/apps/semchain"
-world="$root/worlds/two_similar_rooms.yaml"
+world="${2:-$root/worlds/two_similar_rooms.yaml}"
 mkdir -p "$out"
 
 step() { printf '\n== %s\n' "$*"; }
