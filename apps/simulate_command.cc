@@ -40,7 +40,10 @@ Result<sim::RouteSpec> ParseRoute(const std::string& text) {
 }
 
 Status RunSimulate(const SimulateArgs& args) {
-  Result<sim::World> world = sim::LoadWorld(args.world);
+  // The text is read once: parsed here, and copied into the run as RUN/world.yaml.
+  Result<std::string> world_yaml = ReadFile(args.world);
+  if (!world_yaml.ok()) return world_yaml.status();
+  Result<sim::World> world = sim::ParseWorld(*world_yaml, args.world);
   if (!world.ok()) return world.status();
   SEMCHAIN_RETURN_IF_ERROR(sim::ValidateWorld(*world, args.world));
   Result<sim::RouteSpec> route = ParseRoute(args.route);
@@ -49,8 +52,6 @@ Status RunSimulate(const SimulateArgs& args) {
   options.seed = args.seed;
   options.route = *route;
   options.write_frames = !args.no_frames;
-  Result<std::string> world_yaml = ReadFile(args.world);
-  if (!world_yaml.ok()) return world_yaml.status();
   options.world_yaml = std::move(*world_yaml);
   SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(*world, options, args.out));
   std::printf("wrote %s\n", args.out.c_str());
