@@ -16,18 +16,6 @@ namespace {
 
 constexpr char kRunMarker[] = "run.yaml";
 
-std::string Number(double value) {
-  char text[40];
-  std::snprintf(text, sizeof(text), "%.9g", value);
-  return text;
-}
-
-std::string List(std::initializer_list<double> values) {
-  std::string text = "[";
-  for (double v : values) text += (text.size() > 1 ? ", " : "") + Number(v);
-  return text + "]";
-}
-
 Status EncodePng(const fs::path& path, const cv::Mat& image) {
   std::vector<unsigned char> bytes;
   // Fixed compression so that the same image always gives the same bytes.
@@ -83,31 +71,6 @@ Status FinishRunDirectory(const fs::path& staging, const fs::path& run_dir) {
 void AbandonRunDirectory(const fs::path& staging) {
   std::error_code ignored;
   fs::remove_all(staging, ignored);
-}
-
-std::string FormatCameraYaml(const MountedCamera& camera, double frame_rate_hz) {
-  const PinholeCamera& k = camera.intrinsics;
-  const Eigen::Matrix3d r = camera.robot_from_camera.rotation();
-  const Eigen::Vector3d t = camera.robot_from_camera.translation();
-  const Eigen::Quaterniond q(r);
-  std::string text =
-      "# The simulated RGB-D camera (semchain simulate). Pinhole model without distortion;\n"
-      "# pixel centres at integer coordinates. The optical frame has z forward, x right, y down;\n"
-      "# the robot frame x forward, y left, z up (z = 0 on the floor). Depth PNGs hold\n"
-      "# millimetres along the optical axis (depth_scale metres per unit); 0 = no measurement.\n";
-  text += "width: " + std::to_string(k.width) + "\n";
-  text += "height: " + std::to_string(k.height) + "\n";
-  text += "fx: " + Number(k.fx) + "\nfy: " + Number(k.fy) + "\n";
-  text += "cx: " + Number(k.cx) + "\ncy: " + Number(k.cy) + "\n";
-  text += "max_range: " + Number(camera.max_range) + "\n";
-  text += "depth_scale: 0.001\n";
-  text += "frame_rate_hz: " + Number(frame_rate_hz) + "\n";
-  text += "robot_from_camera:\n";
-  text += "  translation: " + List({t.x(), t.y(), t.z()}) + "\n";
-  text += "  rotation: [" + List({r(0, 0), r(0, 1), r(0, 2)}) + ", " +
-          List({r(1, 0), r(1, 1), r(1, 2)}) + ", " + List({r(2, 0), r(2, 1), r(2, 2)}) + "]\n";
-  text += "  quaternion_xyzw: " + List({q.x(), q.y(), q.z(), q.w()}) + "\n";
-  return text;
 }
 
 std::string FrameName(int index) {

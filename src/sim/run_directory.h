@@ -22,10 +22,6 @@ Status FinishRunDirectory(const std::filesystem::path& staging,
 // Removes a staging directory after a failure (best effort).
 void AbandonRunDirectory(const std::filesystem::path& staging);
 
-// camera.yaml: intrinsics (width, height, fx, fy, cx, cy), max_range, depth encoding, frame
-// rate and robot_from_camera (translation, rotation matrix and quaternion).
-std::string FormatCameraYaml(const MountedCamera& camera, double frame_rate_hz);
-
 // Writes frame 'index' as frames_dir/NNNNNN.png (RGB) and NNNNNN_depth.png (16-bit mm).
 Status WriteFrame(const std::filesystem::path& frames_dir, int index, const RgbdImage& image);
 

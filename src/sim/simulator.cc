@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "core/rng.h"
+#include "io/camera_io.h"
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
 #include "sim/frame_recorder.h"
@@ -141,9 +142,10 @@ Status WriteRun(const Scene& scene, const std::vector<TrajectorySample>& samples
   if (!options.world_yaml.empty()) {
     SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(dir / "world.yaml", options.world_yaml));
   }
-  SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(
-      dir / "camera.yaml",
-      FormatCameraYaml(MakeMountedCamera(world.robot.camera), world.robot.frame_rate_hz)));
+  CameraInfo camera_info;
+  camera_info.camera = MakeMountedCamera(world.robot.camera);
+  camera_info.frame_rate_hz = world.robot.frame_rate_hz;
+  SEMCHAIN_RETURN_IF_ERROR(WriteCameraYaml(dir / "camera.yaml", camera_info));
   return WriteFileAtomically(
       dir / "run.yaml", FormatRunYaml(world, options, samples.front().pose, samples, frame_count));
 }
