@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/angles.h"
-#include "eval/trajectory_lookup.h"
+#include "io/trajectory_lookup.h"
 
 namespace semchain::eval {
 

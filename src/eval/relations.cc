@@ -7,8 +7,8 @@
 #include "core/angles.h"
 #include "core/atomic_file.h"
 #include "eval/statistics.h"
-#include "eval/trajectory_lookup.h"
 #include "io/text_fields.h"
+#include "io/trajectory_lookup.h"
 
 namespace semchain::eval {
 

@@ -55,14 +55,26 @@ Scene::Scene(const World& world) : world_(world) {
   for (std::size_t w = 0; w < world_.walls.size(); ++w) {
     const auto& line = world_.walls[w];
     double u = 0.0;
+    const SurfaceRef ref{SurfaceRef::Kind::kWall, static_cast<int>(w)};
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-      edges_.push_back({line[i],
-                        line[i + 1],
-                        u,
-                        0.0,
-                        world_.wall_height,
-                        {SurfaceRef::Kind::kWall, static_cast<int>(w)}});
-      u += (line[i + 1] - line[i]).norm();
+      const double length = (line[i + 1] - line[i]).norm();
+      if (world_.wall_thickness <= 0.0 || length <= 0.0) {
+        edges_.push_back({line[i], line[i + 1], u, 0.0, world_.wall_height, ref});
+      } else {
+        // A thick wall is the outline of a slab around the segment, lengthened by half the
+        // thickness at both ends so that slabs meeting at a corner overlap (no gap).
+        const Eigen::Vector2d along = (line[i + 1] - line[i]) / length;
+        const Eigen::Vector2d half_along = 0.5 * world_.wall_thickness * along;
+        const Eigen::Vector2d half_across(-half_along.y(), half_along.x());
+        const Eigen::Vector2d a = line[i] - half_along;
+        const Eigen::Vector2d b = line[i + 1] + half_along;
+        const Eigen::Vector2d corners[4] = {a - half_across, b - half_across, b + half_across,
+                                            a + half_across};
+        for (int k = 0; k < 4; ++k) {
+          edges_.push_back({corners[k], corners[(k + 1) % 4], u, 0.0, world_.wall_height, ref});
+        }
+      }
+      u += length;
     }
   }
   for (std::size_t i = 0; i < world_.objects.size(); ++i) {

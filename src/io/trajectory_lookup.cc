@@ -1,9 +1,9 @@
-#include "eval/trajectory_lookup.h"
+#include "io/trajectory_lookup.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace semchain::eval {
+namespace semchain {
 
 TrajectoryLookup::TrajectoryLookup(std::vector<StampedPose> poses) : poses_(std::move(poses)) {
   std::stable_sort(poses_.begin(), poses_.end(), [](const StampedPose& a, const StampedPose& b) {
@@ -46,4 +46,4 @@ std::optional<Pose2> TrajectoryLookup::At(double t, double tolerance, double max
   return Interpolate(a.pose, b.pose, (t - a.timestamp) / gap);
 }
 
-}  // namespace semchain::eval
+}  // namespace semchain

@@ -7,7 +7,7 @@
 #include "core/pose2.h"
 #include "io/trajectory_io.h"
 
-namespace semchain::eval {
+namespace semchain {
 
 // Looks up poses of a trajectory by timestamp.
 class TrajectoryLookup {
@@ -32,4 +32,4 @@ class TrajectoryLookup {
   std::vector<StampedPose> poses_;
 };
 
-}  // namespace semchain::eval
+}  // namespace semchain

@@ -1,0 +1,327 @@
+#include "semantic/object_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "semantic/shape_fit.h"
+
+namespace semchain::semantic {
+namespace {
+
+double LogitOf(double probability) { return std::log(probability / (1.0 - probability)); }
+
+cv::Mat ClassMask(const SemanticGrid& grid, int c, double threshold) {
+  cv::Mat mask;
+  cv::compare(grid.log_odds(c), threshold, mask, cv::CMP_GT);  // 255 where above
+  return mask;
+}
+
+void Morphology(cv::Mat& mask, int operation, int kernel_size) {
+  if (kernel_size <= 1) return;
+  const cv::Mat kernel =
+      cv::getStructuringElement(cv::MORPH_RECT, cv::Size(kernel_size, kernel_size));
+  cv::morphologyEx(mask, mask, operation, kernel);
+}
+
+// Cells of 'labels' equal to 'label', in raster order.
+std::vector<Eigen::Vector2i> CellsWithLabel(const cv::Mat& labels, int label) {
+  std::vector<Eigen::Vector2i> cells;
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* row = labels.ptr<int>(y);
+    for (int x = 0; x < labels.cols; ++x) {
+      if (row[x] == label) cells.emplace_back(x, y);
+    }
+  }
+  return cells;
+}
+
+// How many of 'observation's cells carry 'label'.
+int Overlap(const DetectionObservation& observation, const cv::Mat& labels, int label) {
+  int count = 0;
+  for (const Eigen::Vector2i& cell : observation.cells) {
+    if (cell.x() >= 0 && cell.y() >= 0 && cell.x() < labels.cols && cell.y() < labels.rows &&
+        labels.at<int>(cell.y(), cell.x()) == label) {
+      ++count;
+    }
+  }
+  return count;
+}
+
+bool IsOn(const DetectionObservation& observation, const cv::Mat& labels, int label,
+          double fraction) {
+  return !observation.cells.empty() && Overlap(observation, labels, label) >=
+                                           fraction * static_cast<double>(observation.cells.size());
+}
+
+Eigen::Vector2d MeanCell(const std::vector<Eigen::Vector2i>& cells) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2i& cell : cells) sum += cell.cast<double>();
+  return cells.empty() ? sum : Eigen::Vector2d(sum / static_cast<double>(cells.size()));
+}
+
+// Splits the cells of one region among the k objects on it. The k detections of a frame that
+// saw them all seed k-means on the cell positions.
+std::vector<int> SplitRegion(const std::vector<Eigen::Vector2i>& cells,
+                             const std::vector<const DetectionObservation*>& seeds) {
+  const int k = static_cast<int>(seeds.size());
+  std::vector<Eigen::Vector2d> centers;
+  for (const DetectionObservation* seed : seeds) centers.push_back(MeanCell(seed->cells));
+  cv::Mat samples(static_cast<int>(cells.size()), 2, CV_32F);
+  cv::Mat labels(static_cast<int>(cells.size()), 1, CV_32S);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    samples.at<float>(static_cast<int>(i), 0) = static_cast<float>(cells[i].x());
+    samples.at<float>(static_cast<int>(i), 1) = static_cast<float>(cells[i].y());
+    int best = 0;
+    for (int j = 1; j < k; ++j) {
+      if ((cells[i].cast<double>() - centers[j]).squaredNorm() <
+          (cells[i].cast<double>() - centers[best]).squaredNorm()) {
+        best = j;
+      }
+    }
+    labels.at<int>(static_cast<int>(i)) = best;
+  }
+  // Starting from the seeds' labels, k-means is deterministic (no random centres).
+  cv::Mat centers_out;
+  cv::kmeans(samples, k, labels,
+             cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 20, 1e-3), 1,
+             cv::KMEANS_USE_INITIAL_LABELS, centers_out);
+  return std::vector<int>(labels.begin<int>(), labels.end<int>());
+}
+
+// Centres of the free cells within 'radius' of the centroid of 'points'.
+std::vector<Eigen::Vector2d> FreeCellsNear(const cv::Mat& free_space, const GridGeometry& geometry,
+                                           const std::vector<Eigen::Vector2d>& points,
+                                           double radius) {
+  std::vector<Eigen::Vector2d> cells;
+  if (free_space.empty() || points.empty()) return cells;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  const Eigen::Vector2i low = geometry.CellOf(centroid - Eigen::Vector2d::Constant(radius));
+  const Eigen::Vector2i high = geometry.CellOf(centroid + Eigen::Vector2d::Constant(radius));
+  for (int y = std::max(0, low.y()); y <= std::min(geometry.height - 1, high.y()); ++y) {
+    for (int x = std::max(0, low.x()); x <= std::min(geometry.width - 1, high.x()); ++x) {
+      if (!free_space.at<std::uint8_t>(y, x)) continue;
+      const Eigen::Vector2d center = geometry.CenterOf({x, y});
+      if ((center - centroid).norm() <= radius) cells.push_back(center);
+    }
+  }
+  return cells;
+}
+
+// Joins regions that single detections span: one detection sees one object, so two regions
+// that several detections cover at once are two faces of it (a cabinet's front and side meet
+// at a corner the grid may not fill). Relabels 'labels' in place; returns the new label count.
+int JoinBridgedRegions(const std::vector<const DetectionObservation*>& observations, int components,
+                       const ObjectExtractionOptions& options, cv::Mat& labels) {
+  std::vector<int> parent(components);
+  for (int i = 0; i < components; ++i) parent[i] = i;
+  const auto find = [&parent](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<std::pair<int, int>, int> bridges;
+  for (const DetectionObservation* observation : observations) {
+    std::map<int, int> histogram;
+    for (const Eigen::Vector2i& cell : observation->cells) {
+      if (cell.x() < 0 || cell.y() < 0 || cell.x() >= labels.cols || cell.y() >= labels.rows)
+        continue;
+      const int label = labels.at<int>(cell.y(), cell.x());
+      if (label > 0) ++histogram[label];
+    }
+    std::vector<int> spanned;
+    for (const auto& [label, cells] : histogram) {
+      if (cells >= options.min_cells &&
+          cells >= options.bridge_fraction * static_cast<double>(observation->cells.size())) {
+        spanned.push_back(label);
+      }
+    }
+    for (std::size_t i = 0; i < spanned.size(); ++i) {
+      for (std::size_t j = i + 1; j < spanned.size(); ++j) ++bridges[{spanned[i], spanned[j]}];
+    }
+  }
+  for (const auto& [pair, count] : bridges) {
+    if (count >= options.min_bridges) parent[find(pair.first)] = find(pair.second);
+  }
+  std::vector<int> relabel(components, 0);
+  int next = 1;
+  for (int i = 1; i < components; ++i) {
+    if (find(i) == i) relabel[i] = next++;
+  }
+  for (int y = 0; y < labels.rows; ++y) {
+    int* row = labels.ptr<int>(y);
+    for (int x = 0; x < labels.cols; ++x) row[x] = row[x] > 0 ? relabel[find(row[x])] : 0;
+  }
+  return next;
+}
+
+// One object's share of a class layer: its cells with evidence and the detections on them.
+struct Part {
+  std::vector<Eigen::Vector2i> cells;
+  std::set<int> frames;
+  std::vector<std::size_t> members;  // indices of the observations
+};
+
+// Joins fragments of one object: same-class parts within 'merge_gap_cells' of each other that
+// the detector never reported as two objects at once in min_split_frames frames (a face cut off
+// by the image edge, seen on its own, is the same object; two cabinets side by side are seen
+// together as two).
+std::vector<Part> MergeFragments(std::vector<Part> parts, const ObjectExtractionOptions& options) {
+  const auto near = [&options](const Part& a, const Part& b) {
+    const long limit = static_cast<long>(options.merge_gap_cells) * options.merge_gap_cells;
+    for (const Eigen::Vector2i& p : a.cells) {
+      for (const Eigen::Vector2i& q : b.cells) {
+        if ((p - q).cast<long>().squaredNorm() <= limit) return true;
+      }
+    }
+    return false;
+  };
+  bool merged = true;
+  while (merged) {
+    merged = false;
+    for (std::size_t i = 0; i < parts.size() && !merged; ++i) {
+      for (std::size_t j = i + 1; j < parts.size() && !merged; ++j) {
+        int together = 0;
+        for (int frame : parts[i].frames)
+          together += static_cast<int>(parts[j].frames.count(frame));
+        if (together >= options.min_split_frames || !near(parts[i], parts[j])) continue;
+        parts[i].cells.insert(parts[i].cells.end(), parts[j].cells.begin(), parts[j].cells.end());
+        parts[i].frames.insert(parts[j].frames.begin(), parts[j].frames.end());
+        parts[i].members.insert(parts[i].members.end(), parts[j].members.begin(),
+                                parts[j].members.end());
+        parts.erase(parts.begin() + static_cast<long>(j));
+        merged = true;
+      }
+    }
+  }
+  return parts;
+}
+
+}  // namespace
+
+ExtractedObjects ExtractObjects(const SemanticGrid& grid,
+                                const std::vector<DetectionObservation>& observations,
+                                const std::vector<std::string>& classes,
+                                const SemanticMapOptions& options, const cv::Mat& free_space) {
+  const ObjectExtractionOptions& o = options.extraction;
+  const double threshold = LogitOf(o.occupied_probability);
+  ExtractedObjects result;
+  result.observation_object.assign(observations.size(), -1);
+
+  for (int c = 0; c < grid.class_count(); ++c) {
+    const cv::Mat evidence = ClassMask(grid, c, threshold);
+    cv::Mat mask = evidence.clone();
+    Morphology(mask, cv::MORPH_CLOSE, o.closing_kernel);
+    Morphology(mask, cv::MORPH_OPEN, o.opening_kernel);
+    cv::Mat labels;
+    const int components = cv::connectedComponents(mask, labels, 8, CV_32S);
+
+    std::vector<const DetectionObservation*> of_class;
+    for (const DetectionObservation& observation : observations) {
+      if (observation.class_id == c) of_class.push_back(&observation);
+    }
+    const int count = JoinBridgedRegions(of_class, components, o, labels);
+
+    std::vector<Part> pieces;
+    for (int label = 1; label < count; ++label) {
+      std::vector<Eigen::Vector2i> region = CellsWithLabel(labels, label);
+      if (static_cast<int>(region.size()) < o.min_cells) continue;
+      // The detections on this region, by frame.
+      std::map<int, std::vector<const DetectionObservation*>> by_frame;
+      for (const DetectionObservation* observation : of_class) {
+        if (IsOn(*observation, labels, label, o.detection_overlap)) {
+          by_frame[observation->frame].push_back(observation);
+        }
+      }
+      if (static_cast<int>(by_frame.size()) < o.min_observations) continue;
+      // k = the most objects that at least min_split_frames frames saw on the region at once.
+      std::vector<int> per_frame;
+      for (const auto& [frame, list] : by_frame) per_frame.push_back(static_cast<int>(list.size()));
+      std::sort(per_frame.rbegin(), per_frame.rend());
+      const int k = per_frame.size() >= static_cast<std::size_t>(o.min_split_frames)
+                        ? per_frame[o.min_split_frames - 1]
+                        : 1;
+      std::vector<int> assignment(region.size(), 0);
+      int parts = 1;
+      if (k > 1) {
+        // Seeds: the frame with exactly k detections here whose detections cover most cells.
+        const std::vector<const DetectionObservation*>* seeds = nullptr;
+        std::size_t best_cells = 0;
+        for (const auto& [frame, list] : by_frame) {
+          if (static_cast<int>(list.size()) != k) continue;
+          std::size_t total = 0;
+          for (const DetectionObservation* observation : list) total += observation->cells.size();
+          if (total > best_cells) {
+            best_cells = total;
+            seeds = &list;
+          }
+        }
+        if (seeds != nullptr) {
+          assignment = SplitRegion(region, *seeds);
+          parts = k;
+        }
+      }
+
+      // One object per part, from the cells that carry evidence (closing only joined them).
+      cv::Mat part_labels(labels.size(), CV_32S, cv::Scalar(-1));
+      for (std::size_t i = 0; i < region.size(); ++i) {
+        part_labels.at<int>(region[i].y(), region[i].x()) = assignment[i];
+      }
+      for (int part = 0; part < parts; ++part) {
+        Part piece;
+        for (std::size_t i = 0; i < region.size(); ++i) {
+          const Eigen::Vector2i& cell = region[i];
+          if (assignment[i] == part && evidence.at<std::uint8_t>(cell.y(), cell.x())) {
+            piece.cells.push_back(cell);
+          }
+        }
+        for (std::size_t j = 0; j < observations.size(); ++j) {
+          const DetectionObservation& observation = observations[j];
+          if (observation.class_id == c &&
+              IsOn(observation, part_labels, part, o.detection_overlap)) {
+            piece.frames.insert(observation.frame);
+            piece.members.push_back(j);
+          }
+        }
+        if (!piece.cells.empty()) pieces.push_back(std::move(piece));
+      }
+    }
+    for (Part& piece : MergeFragments(std::move(pieces), o)) {
+      if (static_cast<int>(piece.cells.size()) < o.min_cells ||
+          static_cast<int>(piece.frames.size()) < o.min_observations) {
+        continue;
+      }
+      std::vector<Eigen::Vector2d> points;
+      std::vector<double> weights;
+      Eigen::Vector2d view = Eigen::Vector2d::Zero();
+      double probability_sum = 0.0;
+      for (const Eigen::Vector2i& cell : piece.cells) {
+        points.push_back(grid.MeanPoint(c, cell));
+        weights.push_back(std::max(1, grid.HitFrames(c, cell)));
+        view += grid.ViewDirection(c, cell);
+        probability_sum += grid.Probability(c, cell);
+      }
+      if (view.norm() > 1e-9) view.normalize();
+      const ClassShapePrior prior = options.PriorOf(classes[c]);
+      const std::vector<Eigen::Vector2d> free_points =
+          FreeCellsNear(free_space, grid.geometry(), points, prior.Extent() + 0.2);
+      const FittedShape shape = FitShape(points, weights, view, prior, free_points);
+      SemanticObject object;
+      object.id = static_cast<int>(result.objects.size());
+      object.class_name = classes[c];
+      object.center = shape.center;
+      object.footprint = shape.footprint;
+      object.observations = static_cast<int>(piece.frames.size());
+      object.confidence = probability_sum / static_cast<double>(points.size());
+      for (std::size_t j : piece.members) result.observation_object[j] = object.id;
+      result.objects.push_back(std::move(object));
+    }
+  }
+  return result;
+}
+
+}  // namespace semchain::semantic

@@ -1,0 +1,132 @@
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <string>
+
+// The settings of semantic mapping (DESIGN.md §3.4–3.5), with the defaults used by
+// `semchain semantic`; config/semantic.yaml lists the same values.
+namespace semchain::semantic {
+
+// The footprint a class of object usually has; it completes objects seen from one side only
+// (a cabinet against a wall shows only its front) so that the centre is the object's.
+struct ClassShapePrior {
+  enum class Shape { kBox, kCircle };
+  Shape shape = Shape::kBox;
+  double width = 0.5;   // box: along its face, metres
+  double depth = 0.5;   // box: front to back, metres
+  double radius = 0.2;  // circle, metres
+  // How strongly the prior holds the fitted size when the observations say little (metres,
+  // standard deviation of the size about the prior).
+  double size_std = 0.05;
+
+  // The largest horizontal extent of the shape.
+  double Extent() const { return shape == Shape::kBox ? std::max(width, depth) : 2.0 * radius; }
+};
+
+// Priors for the default classes (door, cabinet, bucket, chair, stool); others get the
+// ClassShapePrior defaults.
+std::map<std::string, ClassShapePrior> DefaultClassPriors();
+
+struct SemanticGridOptions {
+  // Log-odds added to a class layer where a detection's points fall (P = 0.7) and where the
+  // camera saw through the cell or saw another class there (P = 0.4) — seed 001 eq. 2 with the
+  // inverse sensor model of occupancy mapping.
+  double hit_log_odds = 0.847;
+  double miss_log_odds = -0.405;
+  // Added where the camera saw a surface but the detector reported nothing of the class (P =
+  // 0.45: weak, since a detector misses objects that are partly out of view).
+  double undetected_log_odds = -0.2;
+  double max_abs_log_odds = 5.0;
+};
+
+struct DetectionPointOptions {
+  // Points below this height are floor (metres).
+  double min_height = 0.05;
+  // The box edges are jittered by the detector; its core is used so that a neighbour's pixels
+  // at the edge are not taken for the object. Fraction of the width/height cut on each side,
+  // at least 'min_trim_px'.
+  double box_trim_fraction = 0.1;
+  double min_trim_px = 2.0;
+  // A pixel belongs to the object when its depth is within this many times the class extent of
+  // the detection's depth (the median depth of the visible surface), bounded below and above.
+  double depth_gate_factor = 0.5;
+  double min_depth_gate = 0.1;
+  double max_depth_gate = 0.5;
+  // Every 'pixel_stride'-th pixel in both directions is used.
+  int pixel_stride = 1;
+  // Detections with a lower score are ignored.
+  double min_score = 0.3;
+};
+
+struct FreeSpaceOptions {
+  // Image columns sampled for the free-space rays (every 'column_stride'-th).
+  int column_stride = 2;
+  // Free space ends this far before the nearest surface seen in a column (metres), so that the
+  // surface cells themselves are not lowered by depth noise.
+  double surface_margin = 0.15;
+  // Pixels between these heights (metres) bound the free space of their column.
+  double min_height = 0.05;
+  double max_height = 2.0;
+};
+
+struct ObjectExtractionOptions {
+  // Cells whose class probability exceeds this belong to the class layer (P = 0.8: at least two
+  // more hits than misses).
+  double occupied_probability = 0.8;
+  // Square kernel sizes (cells) of the morphological clean-up (seed 001 §1.1): dilation then
+  // erosion (closing) fills the gaps between an object's cells; erosion then dilation (opening)
+  // removes specks. Opening is off by default: seen from one side, an object is a line one or
+  // two cells thick, which an opening would erase; specks are removed by 'min_cells' and
+  // 'min_observations' instead. 0 or 1 disables a step.
+  int closing_kernel = 3;
+  int opening_kernel = 0;
+  // Regions smaller than this (cells) or seen in fewer frames are noise.
+  int min_cells = 2;
+  int min_observations = 3;
+  // A region is split into k objects when at least this many frames show k detections of its
+  // class on it (two cabinets side by side merge on a 5 cm grid).
+  int min_split_frames = 3;
+  // A detection is on a region when this fraction of its cells lies in it.
+  double detection_overlap = 0.5;
+  // Two regions of a class are one object's faces when at least 'min_bridges' detections each
+  // put this fraction of their cells (and at least min_cells) on both.
+  double bridge_fraction = 0.2;
+  int min_bridges = 2;
+  // Parts of a class this close (cells) are one object unless min_split_frames frames showed
+  // them as two detections at once.
+  int merge_gap_cells = 5;
+};
+
+struct ChainOptions {
+  // Free space is cut into regions (rooms, corridors) at doorways narrower than twice this
+  // (metres): the cores of the regions are the cells farther than this from any obstacle.
+  double doorway_half_width = 0.6;
+  // Gaps in walls up to this many cells (minus one) are closed before the cut.
+  int wall_closing_kernel = 7;
+  // Cores smaller than this (square metres) are not regions of their own.
+  double min_region_area = 0.5;
+  // The neighbour graph joins every object to its k nearest mutually visible objects.
+  int neighbours = 3;
+  // Objects farther apart than this are not neighbours (metres).
+  double max_neighbour_distance = 8.0;
+};
+
+struct SemanticMapOptions {
+  SemanticGridOptions grid;
+  DetectionPointOptions points;
+  FreeSpaceOptions free_space;
+  ObjectExtractionOptions extraction;
+  ChainOptions chain;
+  std::map<std::string, ClassShapePrior> priors = DefaultClassPriors();
+  // A frame's pose is the trajectory pose at its stamp: the nearest within this tolerance
+  // (seconds), otherwise interpolated across gaps of at most 'max_pose_gap'.
+  double pose_tolerance = 0.02;
+  double max_pose_gap = 1.0;
+
+  // The prior of 'class_name' (the ClassShapePrior defaults for unknown classes).
+  ClassShapePrior PriorOf(const std::string& class_name) const;
+  bool Validate(std::string* error) const;
+};
+
+}  // namespace semchain::semantic
