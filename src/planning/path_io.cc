@@ -64,7 +64,7 @@ cv::Mat DrawRoute(const mapping::MapImage& map, const Costmap& costmap, const Ro
   for (const Eigen::Vector2d& p : route.points) line.push_back(pixel(p));
   const int thickness = std::max(1, scale / 2);
   cv::polylines(image, line, false, cv::Scalar(200, 60, 0), thickness, cv::LINE_AA);
-  const int radius = std::max(3, 2 * scale);
+  const int radius = std::max(3, scale);
   if (!route.points.empty()) {
     cv::circle(image, line.front(), radius, cv::Scalar(0, 160, 0), cv::FILLED, cv::LINE_AA);
   }
