@@ -75,15 +75,20 @@ Result<DepthFusionResult> FuseDepthRun(const DepthRun& run, const OccupancyGrid&
   OccupancyGrid depth(lidar.options(), lidar.origin());
   const cv::Size image_size(camera.intrinsics.width, camera.intrinsics.height);
   const std::string jsonl = (run.run_dir / "detections.jsonl").string();
-  for (std::size_t i = 0; i < run.frames.size(); ++i) {
-    const FrameDetections& frame = run.frames[i];
+  // Every frame's pose first: a trajectory that misses a frame fails before any image is read.
+  std::vector<Pose2> poses;
+  for (const FrameDetections& frame : run.frames) {
     const Result<Pose2> pose = PoseAtStamp(sorted, frame.stamp, options.stamp_tolerance_seconds);
     if (!pose.ok()) return pose.status().WithContext(jsonl + ": frame " + frame.frame);
+    poses.push_back(*pose);
+  }
+  for (std::size_t i = 0; i < run.frames.size(); ++i) {
+    const FrameDetections& frame = run.frames[i];
     const Result<cv::Mat> image = ReadDepthImage(DepthImagePath(run.run_dir, frame.frame),
                                                  run.camera.depth_scale, image_size);
     if (!image.ok()) return image.status();
     const LaserScan scan = converter.Convert(*image, frame.stamp);
-    InsertScan(PrepareScan(scan, converter.robot_from_scan(), preparation), *pose, &depth);
+    InsertScan(PrepareScan(scan, converter.robot_from_scan(), preparation), poses[i], &depth);
     if (progress) progress(i + 1);
   }
   DepthFusionResult result{depth, FuseGrids(lidar, depth, options.fusion), run.frames.size()};
