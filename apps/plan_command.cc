@@ -96,13 +96,14 @@ int RunPlanCommand(PlanArgs args) {
   const Result<planning::Route> route = planning::PlanRoute(*costmap, *waypoints, args.astar);
   if (!route.ok()) return ReportError(route.status());
 
-  const Status written = planning::WriteRouteJson(args.out, *route);
-  if (!written.ok()) return ReportError(written);
+  // The picture first: the route JSON appearing means that everything asked for was written.
   if (!args.png.empty()) {
     const Status png =
         planning::WriteRoutePng(args.png, planning::DrawRoute(*map, *costmap, *route));
     if (!png.ok()) return ReportError(png);
   }
+  const Status written = planning::WriteRouteJson(args.out, *route);
+  if (!written.ok()) return ReportError(written);
   spdlog::info("plan: {} goal(s), {:.2f} m, cost {:.2f}, {} noise cells removed",
                waypoints->size() - 1, route->length_meters, route->cost,
                costmap->removed_noise_cells);
