@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   semchain::app::AddSemanticCommand(app, exit_code);
   semchain::app::AddEvalCommand(app, exit_code);
   semchain::app::AddBenchCommand(app, exit_code);
+  semchain::app::AddPlanCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -1,6 +1,8 @@
-// semchain slam --log L.clf --out MAP [--particles N] [--config C.yaml] [--seed S] ...
+// semchain slam --log L.clf --out MAP [--particles N] [--config C.yaml] [--seed S] [--depth RUN]
 // RBPF SLAM (seed 003, DESIGN.md §3.2) on a CARMEN log: writes MAP/map.yaml + map.pgm
 // (map_server), MAP/map.png, MAP/trajectory.txt (a pose for every scan) and MAP/slam.json.
+// With --depth RUN the run's depth frames are fused in (seed 004, DESIGN.md §3.3): map.* is
+// then the fused map, map_lidar.* the lidar-only one and map_depth.* the depth-only one.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -12,6 +14,7 @@
 #include "core/progress_bar.h"
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
+#include "mapping/depth_mapping.h"
 #include "mapping/map_io.h"
 #include "mapping/slam_options_io.h"
 #include "mapping/slam_pipeline.h"
@@ -25,6 +28,7 @@ struct SlamArgs {
   std::string config;
   std::string variant;
   std::string every_scan;
+  std::string depth_run;
   std::optional<int> particles;
   std::optional<int> seed;
   std::optional<int> threads;
@@ -73,11 +77,25 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
   return json.dump(2) + "\n";
 }
 
+// Writes MAP/<stem>.yaml + .pgm and, for the main map, map.png.
+Status WriteGrid(const std::filesystem::path& out, const std::string& stem,
+                 const mapping::OccupancyGrid& grid) {
+  const mapping::MapImage image = mapping::GridToMapImage(grid);
+  SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(out / (stem + ".yaml"), image));
+  if (stem != "map") return Status::Ok();
+  return mapping::WriteMapPng(out / "map.png", image);
+}
+
+// The lidar and depth maps go first, so that map.yaml (the fused map) appearing means that
+// the others are complete.
 Status WriteOutputs(const std::filesystem::path& out, const mapping::SlamResult& result,
+                    const std::optional<mapping::DepthFusionResult>& depth,
                     const std::string& statistics) {
-  const mapping::MapImage image = mapping::GridToMapImage(result.map);
-  SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(out / "map.yaml", image));
-  SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMapPng(out / "map.png", image));
+  if (depth) {
+    SEMCHAIN_RETURN_IF_ERROR(WriteGrid(out, "map_lidar", result.map));
+    SEMCHAIN_RETURN_IF_ERROR(WriteGrid(out, "map_depth", depth->depth));
+  }
+  SEMCHAIN_RETURN_IF_ERROR(WriteGrid(out, "map", depth ? depth->fused : result.map));
   SEMCHAIN_RETURN_IF_ERROR(WriteTrajectory(out / "trajectory.txt", result.trajectory));
   return WriteFileAtomically(out / "slam.json", statistics);
 }
@@ -92,6 +110,13 @@ int RunSlamCommand(const SlamArgs& args) {
   if (args.max_scans && static_cast<std::size_t>(*args.max_scans) < scans->size()) {
     scans->resize(static_cast<std::size_t>(*args.max_scans));
   }
+  // The run's camera and frame list are checked before the (long) SLAM run.
+  std::optional<mapping::DepthRun> depth_run;
+  if (!args.depth_run.empty()) {
+    Result<mapping::DepthRun> loaded = mapping::LoadDepthRun(args.depth_run);
+    if (!loaded.ok()) return ReportError(loaded.status());
+    depth_run = std::move(*loaded);
+  }
   const Status writable = EnsureWritableDirectory(args.out);
   if (!writable.ok()) return ReportError(writable);
   spdlog::info("slam: {} scans, {} particles, annealing {}, genetic resampling {}", scans->size(),
@@ -104,7 +129,19 @@ int RunSlamCommand(const SlamArgs& args) {
   bar.Finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Status written = WriteOutputs(args.out, result, StatisticsJson(result, *options, seconds));
+  std::optional<mapping::DepthFusionResult> depth;
+  if (depth_run) {
+    ProgressBar depth_bar("depth fusion", depth_run->frames.size());
+    Result<mapping::DepthFusionResult> fused =
+        mapping::FuseDepthRun(*depth_run, result.map, result.trajectory, {},
+                              [&depth_bar](std::size_t done) { depth_bar.Update(done); });
+    depth_bar.Finish();
+    if (!fused.ok()) return ReportError(fused.status());
+    spdlog::info("slam: fused {} depth frames into the map", fused->frames);
+    depth = std::move(*fused);
+  }
+  const Status written =
+      WriteOutputs(args.out, result, depth, StatisticsJson(result, *options, seconds));
   if (!written.ok()) return ReportError(written);
   spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",
                result.statistics.processed, result.localized, scans->size(), seconds);
@@ -134,6 +171,9 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       ->add_option("--every-scan", args->every_scan,
                    "Poses of unprocessed scans: localize (in the final map) or interpolate")
       ->check(CLI::IsMember({"localize", "interpolate"}));
+  command->add_option("--depth", args->depth_run,
+                      "Run folder whose depth frames are fused into the map (seed 004): "
+                      "camera.yaml, detections.jsonl, frames/*_depth.png");
   command->add_option("--max-scans", args->max_scans, "Use only the first N scans of the log")
       ->check(CLI::PositiveNumber);
   command->callback([args, &exit_code] { exit_code = RunSlamCommand(*args); });

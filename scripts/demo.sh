@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The end-to-end demo on a bundled world: simulate a mapping run, build the map with SLAM,
-# score it against the simulator's truth, and draw world, run and map as PNG.
+# The end-to-end demo on a bundled world: simulate a mapping run, build the map with SLAM and
+# fuse the depth camera into it, score it against the simulator's truth, plan a route S -> P1 ->
+# P2 on the fused map, and draw world, run, map and route as PNG.
 #   scripts/demo.sh [OUTPUT_DIR [WORLD.yaml]]   (defaults: demo/, worlds/two_similar_rooms.yaml)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -16,11 +17,18 @@ step "simulate: $world -> $out/run"
 step "render the world and the run"
 "$semchain" render "$world" --out "$out/world.png"
 "$semchain" render "$out/run" --out "$out/run.png"
-step "slam: $out/run/log.clf -> $out/map"
-"$semchain" slam --log "$out/run/log.clf" --out "$out/map" --seed 1
+step "slam + depth fusion: $out/run/log.clf and depth frames -> $out/map"
+"$semchain" slam --log "$out/run/log.clf" --out "$out/map" --seed 1 --depth "$out/run"
 step "eval ate: SLAM trajectory against the simulator's truth"
 "$semchain" eval ate --poses "$out/map/trajectory.txt" --truth "$out/run/truth.txt" | tee "$out/ate.json"
 step "render the map"
 "$semchain" render "$out/map" --out "$out/map.png"
+# S, P1 and P2: where the robot was at the start, a third and two thirds of the mapping run
+# (free space on every bundled world).
+points=($(awk '$1 !~ /^#/ && NF == 4 { p[n++] = $2 "," $3 } END { print p[0], p[int(n / 3)], p[int(2 * n / 3)] }' \
+  "$out/map/trajectory.txt"))
+step "plan: ${points[0]} -> ${points[1]} -> ${points[2]} on the fused map"
+"$semchain" plan --map "$out/map" --from "${points[0]}" --to "${points[1]};${points[2]}" \
+  --out "$out/route.json" --png "$out/route.png"
 step "done: pictures in $out"
 ls -1 "$out"/*.png
