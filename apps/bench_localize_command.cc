@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "io/carmen.h"
+#include "localization/localization_map.h"
 #include "localization/log_localization_trials.h"
 #include "mapping/slam_pipeline.h"
 
@@ -25,6 +26,7 @@ struct BenchLocalizeArgs {
   int trials = 20;
   int seed = 1;
   double window_s = 120.0;
+  std::optional<double> alpha;
 };
 
 nlohmann::json OptionalNumber(const std::optional<double>& value) {
@@ -42,7 +44,10 @@ nlohmann::json TrialJson(const localization::LogTrial& t) {
           {"cpu_ms", t.cpu_ms},
           {"estimated", t.estimated},
           {"error_m", t.error_m},
-          {"error_deg", t.error_deg}};
+          {"error_deg", t.error_deg},
+          {"reached", t.reached},
+          {"reach_time_s", OptionalNumber(t.reach_time_s)},
+          {"final_within", t.final_within}};
 }
 
 nlohmann::json SummaryJson(const localization::LogTrialSummary& s) {
@@ -55,7 +60,10 @@ nlohmann::json SummaryJson(const localization::LogTrialSummary& s) {
           {"mean_cpu_ms", s.mean_cpu_ms},
           {"mean_iterations", s.mean_iterations},
           {"mean_error_m", s.mean_error_m},
-          {"mean_error_deg", s.mean_error_deg}};
+          {"mean_error_deg", s.mean_error_deg},
+          {"reached", s.reached},
+          {"mean_reach_time_s", OptionalNumber(s.mean_reach_time_s)},
+          {"final_within", s.final_within}};
 }
 
 std::string Fixed(const nlohmann::json& value, int digits) {
@@ -69,17 +77,21 @@ std::string MarkdownTable(const nlohmann::json& results) {
   std::ostringstream md;
   md << "# semchain bench localize\n\nlog: `" << results["log"].get<std::string>() << "`, "
      << results["trials"] << " trials, seed " << results["seed"] << ", window "
-     << results["window"].get<std::string>()
-     << "; success: within 0.25 m and 10° of the corrected pose and staying there\n\n"
+     << results["window"].get<std::string>() << ", AMCL alphas " << results["alpha"]
+     << "; success: within 0.25 m and 10° of the corrected pose and staying there until the "
+        "trial ends (reached: within them at least once; at end: within them at the end)\n\n"
      << "| method | successes | success rate | mean time (s) | mean scans | mean distance (m) | "
-        "mean iterations | mean CPU (ms) | mean error (m) | mean error (deg) |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|\n";
+        "mean iterations | mean CPU (ms) | mean error (m) | mean error (deg) | reached | "
+        "mean time to reach (s) | at end |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [method, m] : results["methods"].items()) {
     md << "| " << method << " | " << m["successes"] << "/" << m["trials"] << " | "
        << Fixed(m["success_rate"], 2) << " | " << Fixed(m["mean_time_s"], 1) << " | "
        << Fixed(m["mean_scans"], 0) << " | " << Fixed(m["mean_distance_m"], 1) << " | "
        << Fixed(m["mean_iterations"], 1) << " | " << Fixed(m["mean_cpu_ms"], 0) << " | "
-       << Fixed(m["mean_error_m"], 3) << " | " << Fixed(m["mean_error_deg"], 2) << " |\n";
+       << Fixed(m["mean_error_m"], 3) << " | " << Fixed(m["mean_error_deg"], 2) << " | "
+       << m["reached"] << " | " << Fixed(m["mean_reach_time_s"], 1) << " | " << m["final_within"]
+       << " |\n";
   }
   return md.str();
 }
@@ -89,6 +101,10 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   options.trials = args.trials;
   options.seed = static_cast<std::uint64_t>(args.seed);
   options.window_seconds = args.window_s;
+  if (args.alpha) {
+    options.amcl.alpha1 = options.amcl.alpha2 = options.amcl.alpha3 = options.amcl.alpha4 =
+        *args.alpha;
+  }
   std::string error;
   for (const std::string& method : args.methods) {
     options.method = method;
@@ -98,13 +114,17 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   if (!log.ok()) return ReportError(log.status());
   const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, args.log);
   if (!scans.ok()) return ReportError(scans.status());
+  spdlog::info("bench localize: building the map from {} corrected poses", scans->size());
+  const mapping::MapImage map = localization::MapFromCorrectedPoses(*scans, options.map_resolution,
+                                                                    options.map_max_range_meters);
+  const localization::LocalizationMap check(map, options.amcl.laser_likelihood_max_dist);
+  if (check.free_cells().empty()) {
+    return ReportError(Status::Error(args.log + ": the map built from the log has no free cells"));
+  }
   const Status writable = EnsureWritableDirectory(args.out);
   if (!writable.ok()) return ReportError(writable);
   const std::filesystem::path out(args.out);
 
-  spdlog::info("bench localize: building the map from {} corrected poses", scans->size());
-  const mapping::MapImage map = localization::MapFromCorrectedPoses(*scans, options.map_resolution,
-                                                                    options.map_max_range_meters);
   const Status map_written = mapping::WriteMap(out / "map.yaml", map);
   if (!map_written.ok()) return ReportError(map_written);
   const bool timed = localization::TimestampsUsable(*scans);
@@ -117,8 +137,9 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
       {"trials", args.trials},
       {"seed", args.seed},
       {"timestamps_usable", timed},
-      {"window", timed ? std::to_string(args.window_s) + " s"
-                       : std::to_string(options.window_scans) + " scans"},
+      {"alpha", options.amcl.alpha1},
+      {"window",
+       timed ? Fixed(args.window_s, 0) + " s" : std::to_string(options.window_scans) + " scans"},
       {"map", {{"width", map.width}, {"height", map.height}, {"resolution", map.resolution}}},
       {"methods", nlohmann::json::object()},
       {"runs", nlohmann::json::object()}};
@@ -157,6 +178,10 @@ void AddBenchLocalize(CLI::App& bench, int& exit_code) {
       ->check(CLI::IsMember({"amcl", "scanmatch-global"}));
   command->add_option("--window", args->window_s, "Log seconds per trial")
       ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--alpha", args->alpha,
+                   "Set AMCL alpha1..alpha4 (default nav2's 0.2, meant for wheel odometry)")
+      ->check(CLI::NonNegativeNumber);
   command->callback([args, &exit_code] { exit_code = RunBenchLocalize(*args); });
 }
 

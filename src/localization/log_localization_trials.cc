@@ -70,7 +70,14 @@ class TrialRunner {
     trial->error_m = history.back().second.meters;
     trial->error_deg = history.back().second.degrees;
     trial->iterations = static_cast<int>(history.size());
-    if (!Ok(history.back().second)) return;
+    for (const auto& [scan, error] : history) {
+      if (!Ok(error)) continue;
+      trial->reached = true;
+      if (timed_) trial->reach_time_s = scans_[scan].scan.timestamp - scans_[start].scan.timestamp;
+      break;
+    }
+    trial->final_within = Ok(history.back().second);
+    if (!trial->final_within) return;
     std::size_t first = history.size() - 1;
     while (first > 0 && Ok(history[first - 1].second)) --first;
     const int scan = history[first].first;
@@ -228,10 +235,16 @@ std::vector<LogTrial> RunLogTrials(const std::vector<StampedScan>& scans,
 LogTrialSummary Summarize(const std::vector<LogTrial>& trials) {
   LogTrialSummary summary;
   summary.trials = static_cast<int>(trials.size());
-  double time_sum = 0.0;
-  int timed = 0;
+  double time_sum = 0.0, reach_sum = 0.0;
+  int timed = 0, reach_timed = 0;
   for (const LogTrial& t : trials) {
     summary.mean_cpu_ms += t.cpu_ms;
+    summary.reached += t.reached ? 1 : 0;
+    summary.final_within += t.final_within ? 1 : 0;
+    if (t.reach_time_s) {
+      reach_sum += *t.reach_time_s;
+      ++reach_timed;
+    }
     if (!t.success) continue;
     ++summary.successes;
     summary.mean_scans += t.scans_to_converge;
@@ -257,6 +270,7 @@ LogTrialSummary Summarize(const std::vector<LogTrial>& trials) {
     summary.mean_error_deg /= s;
   }
   if (timed > 0) summary.mean_time_s = time_sum / timed;
+  if (reach_timed > 0) summary.mean_reach_time_s = reach_sum / reach_timed;
   return summary;
 }
 

@@ -53,6 +53,11 @@ struct LogTrial {
   double error_m = 0.0;          // final estimate's error
   double error_deg = 0.0;
   bool estimated = false;  // the method produced an estimate at all
+  // Weaker criteria, for reading the strict one: the estimate came within the tolerances at
+  // least once (and when, in log seconds), and it is within them at the trial's end.
+  bool reached = false;
+  std::optional<double> reach_time_s;
+  bool final_within = false;
 };
 
 struct LogTrialSummary {
@@ -66,6 +71,9 @@ struct LogTrialSummary {
   double mean_cpu_ms = 0.0;           // all trials
   double mean_error_m = 0.0;          // successes only
   double mean_error_deg = 0.0;
+  int reached = 0;                          // trials whose estimate was ever within tolerance
+  std::optional<double> mean_reach_time_s;  // ... and how soon (those trials)
+  int final_within = 0;                     // trials within tolerance at their end
 };
 
 // Occupancy map from the scans at their logged poses (StampedScan::odometry, the corrected
