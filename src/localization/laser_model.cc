@@ -22,7 +22,9 @@ LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
       range = beams.range_max;
     }
     beams.ranges.push_back(range);
-    beams.bearings.push_back(scan.BeamAngle(static_cast<std::size_t>(i)));
+    const double bearing = scan.BeamAngle(static_cast<std::size_t>(i));
+    beams.bearings.push_back(bearing);
+    beams.directions.emplace_back(std::cos(bearing), std::sin(bearing));
   }
   return beams;
 }
@@ -41,13 +43,16 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
                                     double* mean_beam) const {
   const Pose2 laser = pose * beams.laser_offset;
   const mapping::DistanceField& field = map_.distance_field();
+  const double c = std::cos(laser.theta);
+  const double s = std::sin(laser.theta);
   double p = 1.0, sum = 0.0;
   int used = 0;
   for (std::size_t i = 0; i < beams.ranges.size(); ++i) {
     const double range = beams.ranges[i];
     if (range >= beams.range_max) continue;
-    const double angle = laser.theta + beams.bearings[i];
-    const Eigen::Vector2d hit(laser.x + range * std::cos(angle), laser.y + range * std::sin(angle));
+    const Eigen::Vector2d& d = beams.directions[i];
+    const Eigen::Vector2d hit(laser.x + range * (c * d.x() - s * d.y()),
+                              laser.y + range * (s * d.x() + c * d.y()));
     const double pz = BeamLikelihood(field.DistanceAt(hit), beams.range_max);
     p += pz * pz * pz;
     sum += pz;

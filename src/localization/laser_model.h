@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct LaserBeams {
   double range_max = 0.0;
   std::vector<double> ranges;    // metres; >= range_max means no return
   std::vector<double> bearings;  // radians, laser frame
+  // (cos, sin) of each bearing, so that a particle costs one rotation per beam, not two trig
+  // calls.
+  std::vector<Eigen::Vector2d> directions;
 };
 
 // Selects the beams of 'scan' for 'options' (max_beams, laser_min_range, laser_max_range);
