@@ -281,6 +281,7 @@ void AddBenchCommand(CLI::App& app, int& exit_code) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks (slam; reloc to come)");
   bench->require_subcommand(1);
   AddBenchSlam(*bench, exit_code);
+  AddBenchLocalize(*bench, exit_code);
 }
 
 }  // namespace semchain::app

@@ -1,0 +1,136 @@
+// Throughput of localization (DESIGN.md §6): one AMCL update with 5000 particles and 60 beams on
+// the likelihood field, and branch-and-bound scan matching on a real map (the FR079 corrected
+// log's map, built from its corrected poses; the synthetic room when the data is missing).
+//   build/bench/localization_bench --benchmark_min_time=1
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "io/carmen.h"
+#include "localization/amcl.h"
+#include "localization/log_localization_trials.h"
+#include "localization/scan_match_relocalizer.h"
+#include "mapping/slam_pipeline.h"
+#include "mapping/testing/synthetic_map.h"
+
+namespace semchain::localization {
+namespace {
+
+// A map and a scan with its true pose.
+struct Scene {
+  std::string name;
+  mapping::MapImage map;
+  StampedScan scan;
+};
+
+const Scene& GetScene() {
+  static const std::unique_ptr<Scene> scene = [] {
+    auto s = std::make_unique<Scene>();
+    const std::filesystem::path log_path = std::filesystem::path(SEMCHAIN_SOURCE_DIR) /
+                                           "../shared/data/fr079/freiburg-079-corrected.log.gz";
+    const Result<carmen::Log> log = carmen::ReadLog(log_path);
+    if (log.ok()) {
+      const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, "fr079");
+      if (scans.ok()) {
+        s->name = "fr079";
+        s->map = MapFromCorrectedPoses(*scans, 0.05, 30.0);
+        s->scan = (*scans)[scans->size() / 3];
+        return s;
+      }
+    }
+    s->name = "synthetic room";
+    s->map = mapping::testing::RoomMap();
+    const Pose2 truth(0.37, -0.21, 0.3);
+    s->scan.scan = mapping::testing::SimulateScan(mapping::testing::RoomWorld(), truth);
+    s->scan.odometry = s->scan.laser_pose = truth;
+    return s;
+  }();
+  return *scene;
+}
+
+// One filter update (motion, 60-beam likelihood field for every particle, KLD resampling,
+// clustering) of 5000 particles around the true pose.
+void BM_AmclUpdate5000Particles60Beams(benchmark::State& state) {
+  const Scene& scene = GetScene();
+  AmclOptions options;
+  options.min_particles = options.max_particles = 5000;
+  const LocalizationMap map(scene.map, options.laser_likelihood_max_dist);
+  Amcl amcl(map, options, MakeRng(1));
+  amcl.InitializePose(scene.scan.odometry, Eigen::Vector3d(0.01, 0.01, 0.003).asDiagonal());
+  Pose2 odometry = scene.scan.odometry;
+  bool forward = true;
+  for (auto _ : state) {
+    // Alternate ±0.3 m so that every call passes update_min_d and updates the filter.
+    odometry = odometry * Pose2(forward ? 0.3 : -0.3, 0.0, 0.0);
+    forward = !forward;
+    benchmark::DoNotOptimize(amcl.ProcessScan(scene.scan.scan, odometry, scene.scan.LaserOffset()));
+  }
+  state.SetItemsProcessed(state.iterations() * 5000);  // particle updates
+  state.SetLabel(scene.name);
+}
+BENCHMARK(BM_AmclUpdate5000Particles60Beams)->Unit(benchmark::kMillisecond);
+
+// The likelihood-field weight alone, 5000 particles × 60 beams.
+void BM_LikelihoodFieldWeights5000(benchmark::State& state) {
+  const Scene& scene = GetScene();
+  const AmclOptions options;
+  const LocalizationMap map(scene.map, options.laser_likelihood_max_dist);
+  const LikelihoodFieldModel model(map, options);
+  const LaserBeams beams = SelectBeams(scene.scan.scan, scene.scan.LaserOffset(), options);
+  Rng rng = MakeRng(2);
+  std::vector<Pose2> poses;
+  PoseHypothesis h;
+  h.pose = scene.scan.odometry;
+  for (int i = 0; i < 5000; ++i) poses.push_back(SamplePose(h, rng));
+  for (auto _ : state) {
+    double sum = 0.0, mean = 0.0;
+    for (const Pose2& pose : poses) sum += model.Weight(beams, pose, &mean);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * 5000);
+  state.counters["beams"] = static_cast<double>(beams.ranges.size());
+}
+BENCHMARK(BM_LikelihoodFieldWeights5000)->Unit(benchmark::kMillisecond);
+
+// Global relocalization: branch-and-bound over the whole map and every heading, then Ceres.
+void BM_BranchAndBoundGlobal(benchmark::State& state) {
+  const Scene& scene = GetScene();
+  const ScanMatchRelocalizer relocalizer(scene.map, {});
+  RelocalizationResult result;
+  for (auto _ : state) {
+    result = relocalizer.RelocalizeGlobal(scene.scan.scan, scene.scan.LaserOffset());
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetLabel(scene.name);
+  state.counters["nodes"] = static_cast<double>(result.nodes_scored);
+  state.counters["angles"] = result.angles;
+  state.counters["points"] = result.points;
+  state.counters["score"] = result.score;
+  state.counters["error_m"] =
+      (result.pose.translation() - scene.scan.odometry.translation()).norm();
+}
+BENCHMARK(BM_BranchAndBoundGlobal)->Unit(benchmark::kMillisecond);
+
+// Relocalization with a prior: a ±1 m, ±0.5 rad window around a pose 0.4 m / 0.2 rad off.
+void BM_BranchAndBoundWithPrior(benchmark::State& state) {
+  const Scene& scene = GetScene();
+  const ScanMatchRelocalizer relocalizer(scene.map, {});
+  PoseHypothesis prior;
+  prior.pose = scene.scan.odometry * Pose2(0.3, -0.25, 0.2);
+  prior.covariance = Eigen::Vector3d(0.11, 0.11, 0.028).asDiagonal();
+  RelocalizationResult result;
+  for (auto _ : state) {
+    result = relocalizer.Relocalize(scene.scan.scan, scene.scan.LaserOffset(), {prior});
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["nodes"] = static_cast<double>(result.nodes_scored);
+  state.counters["error_m"] =
+      (result.pose.translation() - scene.scan.odometry.translation()).norm();
+}
+BENCHMARK(BM_BranchAndBoundWithPrior)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace semchain::localization
+
+BENCHMARK_MAIN();

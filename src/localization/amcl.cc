@@ -1,0 +1,194 @@
+#include "localization/amcl.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "core/angles.h"
+#include "core/check.h"
+#include "mapping/resampling.h"
+
+namespace semchain::localization {
+
+Amcl::Amcl(const LocalizationMap& map, const AmclOptions& options, Rng rng)
+    : map_(map),
+      options_(options),
+      rng_(std::move(rng)),
+      motion_model_({options.alpha1, options.alpha2, options.alpha3, options.alpha4}),
+      laser_model_(MakeLaserModel(map, options)),
+      detector_(options.failure_detector) {
+  std::string error;
+  SEMCHAIN_CHECK(options_.Validate(&error));
+}
+
+void Amcl::ResetAfterInitialization() {
+  const double weight = 1.0 / static_cast<double>(particles_.size());
+  for (Particle& p : particles_) p.weight = weight;
+  last_odometry_.reset();
+  w_slow_ = w_fast_ = 0.0;
+  resample_count_ = 0;
+  detector_.Reset();
+  UpdateEstimate();
+}
+
+void Amcl::InitializeGlobal() {
+  SEMCHAIN_CHECK(!map_.free_cells().empty());
+  particles_.assign(static_cast<std::size_t>(options_.max_particles), {});
+  for (Particle& p : particles_) p.pose = map_.RandomFreePose(rng_);
+  ResetAfterInitialization();
+}
+
+void Amcl::InitializePose(const Pose2& mean, const Eigen::Matrix3d& covariance) {
+  InitializeFromHypotheses({{mean, covariance, 1.0}});
+}
+
+void Amcl::InitializeFromHypotheses(const std::vector<PoseHypothesis>& hypotheses) {
+  SEMCHAIN_CHECK(ValidateHypotheses(hypotheses).ok());
+  std::vector<double> weights;
+  for (const PoseHypothesis& h : hypotheses) weights.push_back(h.weight);
+  std::discrete_distribution<std::size_t> pick(weights.begin(), weights.end());
+  particles_.assign(static_cast<std::size_t>(options_.max_particles), {});
+  for (Particle& p : particles_) p.pose = SamplePose(hypotheses[pick(rng_)], rng_);
+  ResetAfterInitialization();
+}
+
+void Amcl::SetPosePrior(const std::vector<PoseHypothesis>& hypotheses) {
+  prior_.emplace(hypotheses, options_.pose_prior.floor);
+}
+
+bool Amcl::ProcessScan(const LaserScan& scan, const Pose2& odometry, const Pose2& laser_offset) {
+  SEMCHAIN_CHECK(!particles_.empty());  // initialise first
+  if (last_odometry_) {
+    const double dx = odometry.x - last_odometry_->x;
+    const double dy = odometry.y - last_odometry_->y;
+    const double da = AngleDifference(odometry.theta, last_odometry_->theta);
+    if (std::abs(dx) <= options_.update_min_d && std::abs(dy) <= options_.update_min_d &&
+        std::abs(da) <= options_.update_min_a) {
+      return false;
+    }
+    MotionUpdate(odometry);
+  }
+  last_odometry_ = odometry;
+  SensorUpdate(SelectBeams(scan, laser_offset, options_));
+  if (++resample_count_ % options_.resample_interval == 0) Resample();
+  UpdateEstimate();
+  if (estimate_.cluster_weight >= 0.9 &&
+      std::sqrt(std::max(estimate_.covariance(0, 0), estimate_.covariance(1, 1))) <=
+          options_.convergence_distance) {
+    detector_.Arm();
+  }
+  return true;
+}
+
+void Amcl::MotionUpdate(const Pose2& odometry) {
+  const OdometryMotion u = OdometryMotion::Between(*last_odometry_, odometry);
+  for (Particle& p : particles_) p.pose = motion_model_.Sample(p.pose, u, rng_);
+}
+
+void Amcl::SensorUpdate(const LaserBeams& beams) {
+  // Weights are normalised before the update, so Σ wᵢ pᵢ is the weighted mean likelihood.
+  double total = 0.0, beam_sum = 0.0;
+  for (Particle& p : particles_) {
+    double mean_beam = 0.0;
+    const double likelihood = laser_model_->Weight(beams, p.pose, &mean_beam);
+    beam_sum += p.weight * mean_beam;
+    p.weight *= likelihood;
+    total += p.weight;
+  }
+  mean_beam_likelihood_ = beam_sum;
+  ++counters_.updates;
+  // Probabilistic Robotics Table 8.3. nav2 averages total / N, which jumps whenever KLD changes
+  // N; the weighted mean likelihood does not.
+  if (options_.recovery_alpha_slow > 0.0 && options_.recovery_alpha_fast > 0.0) {
+    if (w_slow_ == 0.0) {
+      w_slow_ = w_fast_ = total;
+    } else {
+      w_slow_ += options_.recovery_alpha_slow * (total - w_slow_);
+      w_fast_ += options_.recovery_alpha_fast * (total - w_fast_);
+    }
+  }
+  detector_.Update(total - 1.0, mean_beam_likelihood_);
+  if (prior_) {
+    for (Particle& p : particles_) p.weight *= prior_->Probability(p.pose);
+  }
+  double sum = 0.0;
+  for (const Particle& p : particles_) sum += p.weight;
+  const double n = static_cast<double>(particles_.size());
+  for (Particle& p : particles_) p.weight = sum > 0.0 ? p.weight / sum : 1.0 / n;
+}
+
+int Amcl::SampleLimit(int bins) const {
+  // nav2 pf_resample_limit: one bin (or none) keeps max_particles.
+  if (bins <= 1) return options_.max_particles;
+  const double n = std::ceil(KldSampleBound(bins, options_.pf_err, options_.pf_z));
+  return static_cast<int>(std::clamp(n, static_cast<double>(options_.min_particles),
+                                     static_cast<double>(options_.max_particles)));
+}
+
+void Amcl::Resample() {
+  std::vector<double> weights;
+  weights.reserve(particles_.size());
+  for (const Particle& p : particles_) weights.push_back(p.weight);
+  if (options_.selective_resampling &&
+      mapping::EffectiveSampleSize(weights) >= 0.5 * static_cast<double>(particles_.size())) {
+    return;
+  }
+  ++counters_.resamplings;
+  const double w_diff = w_slow_ > 0.0 ? std::max(0.0, 1.0 - w_fast_ / w_slow_) : 0.0;
+  // KLD sampling (Fox 2003, Table 1): draw until the sample count exceeds the bound for the
+  // bins occupied so far (nav2 pf_update_resample).
+  std::vector<double> cumulative(weights.size());
+  std::partial_sum(weights.begin(), weights.end(), cumulative.begin());
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  PoseBins bins(options_.kld_bin_x, options_.kld_bin_y, options_.kld_bin_theta);
+  std::vector<Particle> next;
+  next.reserve(static_cast<std::size_t>(options_.max_particles));
+  while (static_cast<int>(next.size()) < options_.max_particles) {
+    Pose2 pose;
+    if (w_diff > 0.0 && unit(rng_) < w_diff) {
+      pose = map_.RandomFreePose(rng_);
+      ++counters_.random_particles;
+    } else {
+      const double r = unit(rng_) * cumulative.back();
+      const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), r);
+      const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(it - cumulative.begin()),
+                                                  particles_.size() - 1);
+      pose = particles_[i].pose;
+    }
+    next.push_back({pose, 1.0});
+    bins.Insert(pose);
+    if (static_cast<int>(next.size()) > SampleLimit(bins.count())) break;
+  }
+  if (w_diff > 0.0) w_slow_ = w_fast_ = 0.0;  // as nav2: restart the averages after injecting
+  const double weight = 1.0 / static_cast<double>(next.size());
+  for (Particle& p : next) p.weight = weight;
+  particles_ = std::move(next);
+}
+
+void Amcl::UpdateEstimate() {
+  const std::vector<PoseCluster> clusters = ClusterParticles(
+      particles_, {options_.kld_bin_x, options_.kld_bin_y, options_.kld_bin_theta});
+  estimate_ = AmclEstimate();
+  estimate_.particles = static_cast<int>(particles_.size());
+  estimate_.clusters = static_cast<int>(clusters.size());
+  if (!clusters.empty()) {
+    estimate_.pose = clusters.front().mean;
+    estimate_.covariance = clusters.front().covariance;
+    estimate_.cluster_weight = clusters.front().weight;
+  }
+  // nav2 pf_update_converged: unweighted mean, every particle within the distance in x and y.
+  double mx = 0.0, my = 0.0;
+  for (const Particle& p : particles_) {
+    mx += p.pose.x;
+    my += p.pose.y;
+  }
+  mx /= static_cast<double>(particles_.size());
+  my /= static_cast<double>(particles_.size());
+  estimate_.converged = std::all_of(particles_.begin(), particles_.end(), [&](const Particle& p) {
+    return std::abs(p.pose.x - mx) <= options_.convergence_distance &&
+           std::abs(p.pose.y - my) <= options_.convergence_distance;
+  });
+}
+
+}  // namespace semchain::localization

@@ -1,0 +1,101 @@
+#include "localization/laser_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace semchain::localization {
+
+LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
+                       const AmclOptions& options) {
+  LaserBeams beams;
+  beams.laser_offset = laser_offset;
+  beams.range_max = options.laser_max_range > 0.0
+                        ? std::min(scan.max_range, options.laser_max_range)
+                        : scan.max_range;
+  const int n = static_cast<int>(scan.size());
+  if (n == 0) return beams;
+  const int step = std::max(1, (n - 1) / (options.max_beams - 1));
+  for (int i = 0; i < n; i += step) {
+    double range = scan.ranges[static_cast<std::size_t>(i)];
+    if (!std::isfinite(range) || range <= 0.0 ||
+        (options.laser_min_range > 0.0 && range <= options.laser_min_range)) {
+      range = beams.range_max;
+    }
+    beams.ranges.push_back(range);
+    const double bearing = scan.BeamAngle(static_cast<std::size_t>(i));
+    beams.bearings.push_back(bearing);
+    beams.directions.emplace_back(std::cos(bearing), std::sin(bearing));
+  }
+  return beams;
+}
+
+LikelihoodFieldModel::LikelihoodFieldModel(const LocalizationMap& map, const AmclOptions& options)
+    : map_(map),
+      z_hit_(options.z_hit),
+      z_rand_(options.z_rand),
+      factor_(-0.5 / (options.sigma_hit * options.sigma_hit)) {}
+
+double LikelihoodFieldModel::BeamLikelihood(double distance, double range_max) const {
+  return z_hit_ * std::exp(factor_ * distance * distance) + z_rand_ / range_max;
+}
+
+double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
+                                    double* mean_beam) const {
+  const Pose2 laser = pose * beams.laser_offset;
+  const mapping::DistanceField& field = map_.distance_field();
+  const double c = std::cos(laser.theta);
+  const double s = std::sin(laser.theta);
+  double p = 1.0, sum = 0.0;
+  int used = 0;
+  for (std::size_t i = 0; i < beams.ranges.size(); ++i) {
+    const double range = beams.ranges[i];
+    if (range >= beams.range_max) continue;
+    const Eigen::Vector2d& d = beams.directions[i];
+    const Eigen::Vector2d hit(laser.x + range * (c * d.x() - s * d.y()),
+                              laser.y + range * (s * d.x() + c * d.y()));
+    const double pz = BeamLikelihood(field.DistanceAt(hit), beams.range_max);
+    p += pz * pz * pz;
+    sum += pz;
+    ++used;
+  }
+  *mean_beam = used > 0 ? sum / used : 0.0;
+  return p;
+}
+
+BeamModel::BeamModel(const LocalizationMap& map, const AmclOptions& options)
+    : map_(map), options_(options) {}
+
+double BeamModel::BeamLikelihood(double range, double expected, double range_max) const {
+  const double z = range - expected;
+  double pz = options_.z_hit * std::exp(-(z * z) / (2.0 * options_.sigma_hit * options_.sigma_hit));
+  if (z < 0.0) {
+    pz += options_.z_short * options_.lambda_short * std::exp(-options_.lambda_short * range);
+  }
+  if (range >= range_max) pz += options_.z_max;
+  if (range < range_max) pz += options_.z_rand / range_max;
+  return pz;
+}
+
+double BeamModel::Weight(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const {
+  const Pose2 laser = pose * beams.laser_offset;
+  double p = 1.0, sum = 0.0;
+  for (std::size_t i = 0; i < beams.ranges.size(); ++i) {
+    const double expected =
+        map_.CalcRange(laser.translation(), laser.theta + beams.bearings[i], beams.range_max);
+    const double pz =
+        BeamLikelihood(std::min(beams.ranges[i], beams.range_max), expected, beams.range_max);
+    p += pz * pz * pz;
+    sum += pz;
+  }
+  *mean_beam = beams.ranges.empty() ? 0.0 : sum / static_cast<double>(beams.ranges.size());
+  return p;
+}
+
+std::unique_ptr<LaserModel> MakeLaserModel(const LocalizationMap& map, const AmclOptions& options) {
+  if (options.laser_model_type == LaserModelType::kBeam) {
+    return std::make_unique<BeamModel>(map, options);
+  }
+  return std::make_unique<LikelihoodFieldModel>(map, options);
+}
+
+}  // namespace semchain::localization

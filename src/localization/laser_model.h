@@ -1,0 +1,76 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "core/pose2.h"
+#include "localization/amcl_options.h"
+#include "localization/localization_map.h"
+#include "sensors/laser_scan.h"
+
+// The laser measurement models of AMCL (Probabilistic Robotics §6.3 and §6.4, as nav2 amcl
+// evaluates them). Both return nav2's particle weight factor 1 + Σ pz³ over the used beams
+// rather than the product Π pz: nav2 (and ROS amcl before it) combine beams this way because the
+// product of 60 correlated beams is far too peaked; keeping it keeps nav2's behaviour.
+namespace semchain::localization {
+
+// The beams of one scan that the models use: at most max_beams, evenly spaced as nav2 picks
+// them (every ⌊(n − 1) / (max_beams − 1)⌋-th beam from the first).
+struct LaserBeams {
+  Pose2 laser_offset;  // laser pose in the robot frame
+  double range_max = 0.0;
+  std::vector<double> ranges;    // metres; >= range_max means no return
+  std::vector<double> bearings;  // radians, laser frame
+  // (cos, sin) of each bearing, so that a particle costs one rotation per beam, not two trig
+  // calls.
+  std::vector<Eigen::Vector2d> directions;
+};
+
+// Selects the beams of 'scan' for 'options' (max_beams, laser_min_range, laser_max_range);
+// readings at or below the minimum range, non-finite or non-positive count as max range.
+LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
+                       const AmclOptions& options);
+
+class LaserModel {
+ public:
+  virtual ~LaserModel() = default;
+  // The weight factor of a robot at 'pose' for 'beams'; '*mean_beam' receives the mean pz of
+  // the beams used (0 when none was).
+  virtual double Weight(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const = 0;
+};
+
+// nav2 likelihood_field: pz = z_hit exp(−d² / 2σ_hit²) + z_rand / range_max, d the distance from
+// the beam endpoint to the nearest occupied cell (laser_likelihood_max_dist off the map);
+// max-range readings are skipped.
+class LikelihoodFieldModel : public LaserModel {
+ public:
+  // 'map' must outlive the model.
+  LikelihoodFieldModel(const LocalizationMap& map, const AmclOptions& options);
+  double Weight(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const override;
+  // pz of one beam whose endpoint is 'distance' from the nearest obstacle.
+  double BeamLikelihood(double distance, double range_max) const;
+
+ private:
+  const LocalizationMap& map_;
+  double z_hit_, z_rand_, factor_;
+};
+
+// nav2 beam: the expected range z* is ray cast on the map; pz = z_hit exp(−(z − z*)² / 2σ_hit²)
+// (unnormalised, as in nav2) + z_short λ e^{−λz} when z < z*, + z_max for a max-range reading,
+// + z_rand / range_max otherwise.
+class BeamModel : public LaserModel {
+ public:
+  BeamModel(const LocalizationMap& map, const AmclOptions& options);
+  double Weight(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const override;
+  // pz of a reading 'range' where the map predicts 'expected'.
+  double BeamLikelihood(double range, double expected, double range_max) const;
+
+ private:
+  const LocalizationMap& map_;
+  AmclOptions options_;
+};
+
+std::unique_ptr<LaserModel> MakeLaserModel(const LocalizationMap& map, const AmclOptions& options);
+
+}  // namespace semchain::localization

@@ -1,0 +1,96 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "localization/amcl_options.h"
+#include "localization/scan_match_relocalizer.h"
+#include "mapping/map_io.h"
+#include "sensors/laser_scan.h"
+
+// Global localization (kidnapped robot) on a real log with corrected poses
+// (`semchain bench localize`): the map is built from the corrected poses (not by SLAM); each
+// trial starts at a random scan with the pose unknown and runs a method over the following
+// scans with the log's odometry. A trial succeeds when the estimate comes within
+// success_distance / success_angle of the corrected pose and stays there until the trial ends;
+// its time is the log time from the start scan to the first update of that final streak.
+namespace semchain::localization {
+
+struct LogTrialOptions {
+  int trials = 20;
+  std::uint64_t seed = 1;
+  std::string method = "amcl";  // amcl | scanmatch-global
+  // A trial covers this much log time after its start scan (start scans are drawn among those
+  // with that much log left). Logs whose timestamps do not increase use window_scans instead.
+  double window_seconds = 120.0;
+  int window_scans = 300;
+  double success_distance_meters = 0.25;
+  double success_angle_radians = 0.17453292519943295;  // 10°
+  // The map: cells of this size, returns up to this range (far returns smear walls).
+  double map_resolution = 0.05;
+  double map_max_range_meters = 30.0;
+  AmclOptions amcl;
+  ScanMatchRelocalizerOptions relocalizer;
+  // scanmatch-global: attempts on scans spaced like AMCL updates (update_min_d / update_min_a)
+  // until one reaches the minimum score.
+  int max_relocalization_attempts = 10;
+
+  bool Validate(std::string* error) const;
+};
+
+struct LogTrial {
+  int trial = 0;
+  int start_scan = 0;
+  bool success = false;
+  std::optional<double> time_s;  // log seconds to converge (successes with usable timestamps)
+  int scans_to_converge = 0;     // scans from the start scan to convergence (successes)
+  double distance_m = 0.0;       // odometry distance driven until convergence (successes)
+  int iterations = 0;            // filter updates / match attempts until convergence or the end
+  double cpu_ms = 0.0;           // CPU time of the whole trial
+  double error_m = 0.0;          // final estimate's error
+  double error_deg = 0.0;
+  bool estimated = false;  // the method produced an estimate at all
+  // Weaker criteria, for reading the strict one: the estimate came within the tolerances at
+  // least once (and when, in log seconds), and it is within them at the trial's end.
+  bool reached = false;
+  std::optional<double> reach_time_s;
+  bool final_within = false;
+};
+
+struct LogTrialSummary {
+  int trials = 0;
+  int successes = 0;
+  double success_rate = 0.0;
+  std::optional<double> mean_time_s;  // successes only
+  double mean_scans = 0.0;            // successes only
+  double mean_distance_m = 0.0;       // successes only
+  double mean_iterations = 0.0;       // successes only
+  double mean_cpu_ms = 0.0;           // all trials
+  double mean_error_m = 0.0;          // successes only
+  double mean_error_deg = 0.0;
+  int reached = 0;                          // trials whose estimate was ever within tolerance
+  std::optional<double> mean_reach_time_s;  // ... and how soon (those trials)
+  int final_within = 0;                     // trials within tolerance at their end
+};
+
+// Occupancy map from the scans at their logged poses (StampedScan::odometry, the corrected
+// robot pose in a corrected log), thresholded as map_saver does.
+mapping::MapImage MapFromCorrectedPoses(const std::vector<StampedScan>& scans, double resolution,
+                                        double max_range_meters);
+
+// True when the scan timestamps never decrease and span a plausible time (MIT Killian's corrected
+// log has timestamps that wrap to 4.29e9).
+bool TimestampsUsable(const std::vector<StampedScan>& scans);
+
+// Runs the trials on 'scans' (a corrected log) against 'map'. 'progress' (may be empty) is
+// called with the number of trials done.
+std::vector<LogTrial> RunLogTrials(const std::vector<StampedScan>& scans,
+                                   const mapping::MapImage& map, const LogTrialOptions& options,
+                                   const std::function<void(int)>& progress = {});
+
+LogTrialSummary Summarize(const std::vector<LogTrial>& trials);
+
+}  // namespace semchain::localization

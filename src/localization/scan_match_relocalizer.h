@@ -1,0 +1,88 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/pose2.h"
+#include "localization/pose_hypothesis.h"
+#include "mapping/branch_and_bound_matcher.h"
+#include "mapping/ceres_scan_matcher.h"
+#include "mapping/map_io.h"
+#include "mapping/match_grid.h"
+#include "sensors/laser_scan.h"
+
+// Scan-matcher relocalization (seed 001 §2.2, Cartographer style): branch-and-bound over the
+// map's precomputation grids inside a window around a prior pose (the semantic
+// pre-localization), then Ceres refinement of Σ (1 − M(S_i(T)))² on the bicubic grid. Without a
+// prior the same matcher searches the whole map: the `scanmatch-global` baseline
+// (Cartographer's global relocalization).
+namespace semchain::localization {
+
+struct ScanMatchRelocalizerOptions {
+  mapping::MatchGridOptions grid;
+  mapping::BranchAndBoundOptions branch_and_bound;
+  mapping::CeresScanMatcherOptions ceres;
+  // A match is accepted when its branch-and-bound score (mean M over the points) reaches this
+  // (Cartographer's global_localization_min_score is 0.6 on its probability grids).
+  double min_score = 0.6;
+  // Returns farther than this are dropped: far returns are sparse and would make the angular
+  // step (set by the farthest point) tiny. Cartographer's default max_range is 30 m.
+  double max_range_meters = 30.0;
+  // Returns closer than this to the previously kept one are dropped (a cheap voxel filter).
+  double min_point_spacing_meters = 0.1;
+  // With a prior the window is 3σ of the hypothesis' covariance, clamped to these.
+  double min_linear_window_meters = 0.5;
+  double max_linear_window_meters = 7.0;
+  double min_angular_window_radians = 0.2;
+
+  bool Validate(std::string* error) const;
+};
+
+struct RelocalizationResult {
+  bool success = false;  // the branch-and-bound score reached min_score
+  Pose2 pose;            // refined pose (valid when success)
+  Pose2 coarse_pose;     // branch-and-bound pose
+  double score = 0.0;    // branch-and-bound score of the best match (also when it failed)
+  double refined_score = 0.0;
+  int hypothesis = -1;  // which prior hypothesis won (-1: global search)
+  // Work: nodes scored in the search trees, headings searched, CPU seconds (search + refinement).
+  std::int64_t nodes_scored = 0;
+  int angles = 0;
+  int points = 0;
+  double cpu_seconds = 0.0;
+};
+
+class ScanMatchRelocalizer {
+ public:
+  // Builds the match grid and the precomputation grids of 'map' (once per map).
+  ScanMatchRelocalizer(const mapping::MapImage& map, const ScanMatchRelocalizerOptions& options);
+  ScanMatchRelocalizer(const ScanMatchRelocalizer&) = delete;
+  ScanMatchRelocalizer& operator=(const ScanMatchRelocalizer&) = delete;
+
+  // The returns of 'scan' in the robot frame (laser at 'laser_offset'), range-limited and thinned.
+  std::vector<Eigen::Vector2d> MatchPoints(const LaserScan& scan, const Pose2& laser_offset) const;
+
+  // Searches a window around each hypothesis (3σ of its covariance, clamped) and returns the
+  // best match over all of them, refined.
+  RelocalizationResult Relocalize(const LaserScan& scan, const Pose2& laser_offset,
+                                  const std::vector<PoseHypothesis>& priors) const;
+  // Searches the given window.
+  RelocalizationResult RelocalizeInWindow(const LaserScan& scan, const Pose2& laser_offset,
+                                          const mapping::SearchWindow& window) const;
+  // Searches the whole map and every heading (no prior).
+  RelocalizationResult RelocalizeGlobal(const LaserScan& scan, const Pose2& laser_offset) const;
+
+  const mapping::MatchGrid& grid() const { return grid_; }
+
+ private:
+  RelocalizationResult Finish(const std::vector<Eigen::Vector2d>& points,
+                              const mapping::BranchAndBoundResult& match) const;
+
+  ScanMatchRelocalizerOptions options_;
+  mapping::MatchGrid grid_;
+  mapping::BranchAndBoundMatcher matcher_;
+};
+
+}  // namespace semchain::localization

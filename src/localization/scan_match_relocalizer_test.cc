@@ -1,0 +1,64 @@
+#include "localization/scan_match_relocalizer.h"
+
+#include <gtest/gtest.h>
+
+#include "core/angles.h"
+#include "mapping/testing/synthetic_map.h"
+
+namespace semchain::localization {
+namespace {
+
+class ScanMatchRelocalizerTest : public ::testing::Test {
+ protected:
+  ScanMatchRelocalizerTest() : relocalizer_(mapping::testing::RoomMap(), Options()) {}
+  static ScanMatchRelocalizerOptions Options() {
+    ScanMatchRelocalizerOptions options;
+    options.branch_and_bound.branch_and_bound_depth = 6;
+    return options;
+  }
+  static LaserScan Scan(const Pose2& pose) {
+    return mapping::testing::SimulateScan(mapping::testing::RoomWorld(), pose, 361, 1.5 * kPi);
+  }
+  ScanMatchRelocalizer relocalizer_;
+};
+
+TEST_F(ScanMatchRelocalizerTest, PriorWindowThenCeresFindsThePose) {
+  const Pose2 truth(-2.31, 1.17, 2.2);
+  PoseHypothesis wrong, right;
+  wrong.pose = Pose2(3.0, -1.0, 0.0);
+  wrong.weight = 3.0;
+  right.pose = Pose2(truth.x + 0.3, truth.y - 0.25, truth.theta + 0.15);
+  right.covariance = Eigen::Vector3d(0.04, 0.04, 0.01).asDiagonal();
+  const RelocalizationResult result = relocalizer_.Relocalize(Scan(truth), Pose2(), {wrong, right});
+  ASSERT_TRUE(result.success);
+  EXPECT_EQ(result.hypothesis, 1);
+  EXPECT_NEAR(result.pose.x, truth.x, 0.02);
+  EXPECT_NEAR(result.pose.y, truth.y, 0.02);
+  EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.01);
+  EXPECT_GT(result.refined_score, 0.8);
+  EXPECT_GT(result.nodes_scored, 0);
+}
+
+TEST_F(ScanMatchRelocalizerTest, GlobalSearchWithoutPrior) {
+  const Pose2 truth(1.9, -2.6, -0.7);
+  const RelocalizationResult result = relocalizer_.RelocalizeGlobal(Scan(truth), Pose2());
+  ASSERT_TRUE(result.success);
+  EXPECT_NEAR(result.pose.x, truth.x, 0.02);
+  EXPECT_NEAR(result.pose.y, truth.y, 0.02);
+  EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.01);
+  EXPECT_EQ(result.hypothesis, -1);
+}
+
+TEST_F(ScanMatchRelocalizerTest, LaserOffsetIsApplied) {
+  const Pose2 robot(0.5, 2.0, -1.0);
+  const Pose2 offset(0.2, 0.05, 0.1);
+  const RelocalizationResult result = relocalizer_.RelocalizeInWindow(
+      Scan(robot * offset), offset, {Pose2(0.7, 1.8, -0.9), 0.5, 0.3});
+  ASSERT_TRUE(result.success);
+  EXPECT_NEAR(result.pose.x, robot.x, 0.02);
+  EXPECT_NEAR(result.pose.y, robot.y, 0.02);
+  EXPECT_NEAR(AngleDifference(result.pose.theta, robot.theta), 0.0, 0.01);
+}
+
+}  // namespace
+}  // namespace semchain::localization

@@ -1,0 +1,203 @@
+#include "mapping/branch_and_bound_matcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+
+#include "core/angles.h"
+#include "core/check.h"
+
+namespace semchain::mapping {
+namespace {
+
+// One node of the search tree: a heading and the lowest translation offset (cells) of the
+// 2^h × 2^h block of translations it covers.
+struct Candidate {
+  int angle = 0;  // index into Discretization::angles
+  int dx = 0;
+  int dy = 0;
+  std::int64_t sum = 0;  // Σ precomputation-grid values over the points
+};
+
+bool Better(const Candidate& a, const Candidate& b) { return a.sum > b.sum; }
+
+double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+}  // namespace
+
+bool BranchAndBoundOptions::Validate(std::string* error) const {
+  if (branch_and_bound_depth < 0 || branch_and_bound_depth > 14) {
+    *error = "branch_and_bound_depth must be in [0, 14]";
+    return false;
+  }
+  if (!(angular_step_radians >= 0.0)) {
+    *error = "angular_step_radians must be >= 0";
+    return false;
+  }
+  return true;
+}
+
+// The scan rotated to every searched heading and placed at the window centre, in cells; the
+// translation offsets then only shift cell indices.
+struct BranchAndBoundMatcher::Discretization {
+  Pose2 center;
+  double resolution = 0.05;
+  std::vector<double> angles;                       // absolute headings
+  std::vector<std::vector<Eigen::Vector2i>> cells;  // per heading, per point
+  int min_x = 0, max_x = 0, min_y = 0, max_y = 0;   // translation offsets, cells
+
+  std::int64_t Sum(const PrecomputationGrid& grid, const Candidate& c) const {
+    std::int64_t sum = 0;
+    for (const Eigen::Vector2i& cell : cells[static_cast<std::size_t>(c.angle)]) {
+      sum += grid.At(cell.x() + c.dx, cell.y() + c.dy);
+    }
+    return sum;
+  }
+  Pose2 PoseOf(const Candidate& c) const {
+    return Pose2(center.x + c.dx * resolution, center.y + c.dy * resolution,
+                 angles[static_cast<std::size_t>(c.angle)]);
+  }
+};
+
+BranchAndBoundMatcher::BranchAndBoundMatcher(const MatchGrid& grid,
+                                             const BranchAndBoundOptions& options)
+    : grid_(grid), options_(options), stack_(grid, options.branch_and_bound_depth) {
+  std::string error;
+  SEMCHAIN_CHECK(options_.Validate(&error));
+}
+
+BranchAndBoundMatcher::Discretization BranchAndBoundMatcher::Discretize(
+    const std::vector<Eigen::Vector2d>& points, const SearchWindow& window) const {
+  Discretization d;
+  d.center = window.center;
+  d.resolution = grid_.resolution;
+  double step = options_.angular_step_radians;
+  if (step <= 0.0) {
+    double farthest = grid_.resolution;
+    for (const Eigen::Vector2d& p : points) farthest = std::max(farthest, p.norm());
+    const double r = grid_.resolution;
+    step = std::acos(1.0 - r * r / (2.0 * farthest * farthest));
+  }
+  if (window.angular_window_radians >= kPi) {
+    const int n = static_cast<int>(std::ceil(kPi / step));
+    for (int i = -n + 1; i <= n; ++i) d.angles.push_back(window.center.theta + i * (kPi / n));
+  } else {
+    const int n = static_cast<int>(std::ceil(window.angular_window_radians / step));
+    for (int i = -n; i <= n; ++i) d.angles.push_back(window.center.theta + i * step);
+  }
+  for (const double theta : d.angles) {
+    const Pose2 pose(window.center.x, window.center.y, theta);
+    std::vector<Eigen::Vector2i>& cells = d.cells.emplace_back();
+    cells.reserve(points.size());
+    for (const Eigen::Vector2d& p : points) {
+      const Eigen::Vector2d g = grid_.ToGrid(pose * p);
+      cells.emplace_back(static_cast<int>(std::floor(g.x())), static_cast<int>(std::floor(g.y())));
+    }
+  }
+  const int n = static_cast<int>(std::ceil(window.linear_window_meters / grid_.resolution));
+  d.min_x = d.min_y = -n;
+  d.max_x = d.max_y = n;
+  return d;
+}
+
+BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vector2d>& points,
+                                                  const SearchWindow& window,
+                                                  double min_score) const {
+  const double start = CpuSeconds();
+  BranchAndBoundResult result;
+  if (points.empty()) return result;
+  const Discretization d = Discretize(points, window);
+  const int depth = stack_.max_depth();
+  const double normalizer = 255.0 * static_cast<double>(points.size());
+  const auto score_all = [&](std::vector<Candidate>& candidates, int height) {
+    const PrecomputationGrid& grid = stack_.Get(height);
+    for (Candidate& c : candidates) c.sum = d.Sum(grid, c);
+    result.nodes_scored += static_cast<std::int64_t>(candidates.size());
+    std::sort(candidates.begin(), candidates.end(), Better);
+  };
+  // Root nodes: every heading, translations in steps of 2^depth (Hess et al. Algorithm 3).
+  std::vector<Candidate> roots;
+  const int root_step = 1 << depth;
+  for (int a = 0; a < static_cast<int>(d.angles.size()); ++a) {
+    for (int dx = d.min_x; dx <= d.max_x; dx += root_step) {
+      for (int dy = d.min_y; dy <= d.max_y; dy += root_step) roots.push_back({a, dx, dy, 0});
+    }
+  }
+  score_all(roots, depth);
+  result.root_nodes = static_cast<std::int64_t>(roots.size());
+  result.angles = static_cast<int>(d.angles.size());
+
+  // Depth-first, best child first; a node whose bound does not beat the best leaf is pruned.
+  std::int64_t best_sum = static_cast<std::int64_t>(std::ceil(min_score * normalizer)) - 1;
+  std::optional<Candidate> best;
+  const auto search = [&](auto&& self, const std::vector<Candidate>& candidates,
+                          int height) -> void {
+    for (const Candidate& c : candidates) {
+      if (c.sum <= best_sum) break;  // sorted: no later node can do better
+      if (height == 0) {
+        best_sum = c.sum;
+        best = c;
+        continue;
+      }
+      const int half = 1 << (height - 1);
+      std::vector<Candidate> children;
+      for (const int ox : {0, half}) {
+        if (c.dx + ox > d.max_x) break;
+        for (const int oy : {0, half}) {
+          if (c.dy + oy > d.max_y) break;
+          children.push_back({c.angle, c.dx + ox, c.dy + oy, 0});
+        }
+      }
+      score_all(children, height - 1);
+      self(self, children, height - 1);
+    }
+  };
+  search(search, roots, depth);
+  if (best) {
+    result.found = true;
+    result.pose = d.PoseOf(*best);
+    result.score = static_cast<double>(best->sum) / normalizer;
+  }
+  result.cpu_seconds = CpuSeconds() - start;
+  return result;
+}
+
+BranchAndBoundResult BranchAndBoundMatcher::MatchFullMap(const std::vector<Eigen::Vector2d>& points,
+                                                         double min_score) const {
+  SearchWindow window;
+  const Eigen::Vector2d center = grid_.Center();
+  window.center = Pose2(center.x(), center.y(), 0.0);
+  // Half the larger side plus one cell: every robot position on the map is searched.
+  window.linear_window_meters =
+      0.5 * std::max(grid_.width, grid_.height) * grid_.resolution + grid_.resolution;
+  window.angular_window_radians = kPi;
+  return Match(points, window, min_score);
+}
+
+BranchAndBoundResult BranchAndBoundMatcher::MatchExhaustive(
+    const std::vector<Eigen::Vector2d>& points, const SearchWindow& window) const {
+  const double start = CpuSeconds();
+  BranchAndBoundResult result;
+  if (points.empty()) return result;
+  const Discretization d = Discretize(points, window);
+  const PrecomputationGrid& grid = stack_.Get(0);
+  Candidate best{0, 0, 0, -1};
+  for (int a = 0; a < static_cast<int>(d.angles.size()); ++a) {
+    for (int dx = d.min_x; dx <= d.max_x; ++dx) {
+      for (int dy = d.min_y; dy <= d.max_y; ++dy) {
+        Candidate c{a, dx, dy, 0};
+        c.sum = d.Sum(grid, c);
+        ++result.nodes_scored;
+        if (c.sum > best.sum) best = c;
+      }
+    }
+  }
+  result.found = true;
+  result.pose = d.PoseOf(best);
+  result.score = static_cast<double>(best.sum) / (255.0 * static_cast<double>(points.size()));
+  result.angles = static_cast<int>(d.angles.size());
+  result.cpu_seconds = CpuSeconds() - start;
+  return result;
+}
+
+}  // namespace semchain::mapping

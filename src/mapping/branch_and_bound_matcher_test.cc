@@ -1,0 +1,88 @@
+#include "mapping/branch_and_bound_matcher.h"
+
+#include <gtest/gtest.h>
+
+#include "core/angles.h"
+#include "mapping/ceres_scan_matcher.h"
+#include "mapping/testing/synthetic_map.h"
+
+namespace semchain::mapping {
+namespace {
+
+// Returns of a scan simulated in RoomWorld at 'pose', in the robot frame, every 'step'-th beam.
+std::vector<Eigen::Vector2d> ScanPoints(const Pose2& pose, int step = 4) {
+  const LaserScan scan = testing::SimulateScan(testing::RoomWorld(), pose, 361, 1.5 * kPi, 12.0);
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t i = 0; i < scan.size(); i += static_cast<std::size_t>(step)) {
+    if (!scan.IsReturn(i)) continue;
+    const double a = scan.BeamAngle(i);
+    points.emplace_back(scan.ranges[i] * std::cos(a), scan.ranges[i] * std::sin(a));
+  }
+  return points;
+}
+
+class BranchAndBoundTest : public ::testing::Test {
+ protected:
+  BranchAndBoundTest() : grid_(MakeMatchGrid(testing::RoomMap())) {}
+  MatchGrid grid_;
+};
+
+TEST_F(BranchAndBoundTest, FindsTheExhaustiveOptimumOfTheSameDiscretisation) {
+  BranchAndBoundOptions options;
+  options.branch_and_bound_depth = 4;
+  options.angular_step_radians = 0.02;
+  const BranchAndBoundMatcher matcher(grid_, options);
+  const std::vector<Eigen::Vector2d> points = ScanPoints(Pose2(-1.13, 0.42, 0.31));
+  for (const Pose2& center : {Pose2(-1.0, 0.6, 0.4), Pose2(-1.4, 0.2, 0.2)}) {
+    SearchWindow window{center, 0.6, 0.2};
+    const BranchAndBoundResult exhaustive = matcher.MatchExhaustive(points, window);
+    const BranchAndBoundResult fast = matcher.Match(points, window, 0.0);
+    ASSERT_TRUE(fast.found);
+    EXPECT_DOUBLE_EQ(fast.score, exhaustive.score);
+    EXPECT_NEAR(fast.pose.x, exhaustive.pose.x, 1e-9);
+    EXPECT_NEAR(fast.pose.y, exhaustive.pose.y, 1e-9);
+    EXPECT_NEAR(fast.pose.theta, exhaustive.pose.theta, 1e-9);
+    // The truth is within a cell and an angular step of the optimum, and the bound pruned.
+    EXPECT_NEAR(fast.pose.x, -1.13, 0.06);
+    EXPECT_NEAR(fast.pose.y, 0.42, 0.06);
+    EXPECT_NEAR(fast.pose.theta, 0.31, 0.021);
+    EXPECT_LT(fast.nodes_scored, exhaustive.nodes_scored / 4);
+  }
+}
+
+TEST_F(BranchAndBoundTest, MinimumScoreRejectsAWrongScan) {
+  const BranchAndBoundMatcher matcher(grid_);
+  std::vector<Eigen::Vector2d> points;  // a circle of returns that fits nowhere in the room
+  for (int i = 0; i < 90; ++i) {
+    points.emplace_back(0.7 * std::cos(i * kPi / 45), 0.7 * std::sin(i * kPi / 45));
+  }
+  EXPECT_FALSE(matcher.Match(points, {Pose2(0, 0, 0), 1.0, 0.3}, 0.9).found);
+}
+
+TEST_F(BranchAndBoundTest, FullMapSearchFindsThePoseWithoutAPrior) {
+  BranchAndBoundOptions options;
+  options.branch_and_bound_depth = 6;
+  const BranchAndBoundMatcher matcher(grid_, options);
+  const Pose2 truth(2.2, -1.3, -2.5);
+  const BranchAndBoundResult result = matcher.MatchFullMap(ScanPoints(truth, 3), 0.5);
+  ASSERT_TRUE(result.found);
+  EXPECT_NEAR(result.pose.x, truth.x, 0.06);
+  EXPECT_NEAR(result.pose.y, truth.y, 0.06);
+  EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.02);
+  EXPECT_GT(result.score, 0.7);
+}
+
+TEST_F(BranchAndBoundTest, CeresRefinementRecoversASmallOffset) {
+  const Pose2 truth(0.37, -2.11, 1.2);
+  const std::vector<Eigen::Vector2d> points = ScanPoints(truth, 2);
+  const Pose2 start(truth.x + 0.04, truth.y - 0.03, truth.theta + 0.025);
+  const CeresMatchResult result = RefineWithCeres(grid_, points, start);
+  EXPECT_NEAR(result.pose.x, truth.x, 0.01);
+  EXPECT_NEAR(result.pose.y, truth.y, 0.01);
+  EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.004);
+  EXPECT_LT(result.final_cost, result.initial_cost);
+  EXPECT_GT(result.score, MatchScore(grid_, points, start));
+}
+
+}  // namespace
+}  // namespace semchain::mapping

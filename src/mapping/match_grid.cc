@@ -1,0 +1,40 @@
+#include "mapping/match_grid.h"
+
+#include <cmath>
+
+#include "core/check.h"
+#include "mapping/distance_field.h"
+
+namespace semchain::mapping {
+
+bool MatchGridOptions::Validate(std::string* error) const {
+  if (!(sigma_meters > 0.0)) {
+    *error = "sigma_meters must be positive";
+    return false;
+  }
+  return true;
+}
+
+MatchGrid MakeMatchGrid(const MapImage& map, const MatchGridOptions& options) {
+  std::string error;
+  SEMCHAIN_CHECK(options.Validate(&error));
+  // Beyond 4 σ, M < 3.4e-4: cap the distances there.
+  const DistanceField field(map, 4.0 * options.sigma_meters);
+  MatchGrid grid;
+  grid.width = map.width;
+  grid.height = map.height;
+  grid.resolution = map.resolution;
+  grid.origin = Eigen::Vector2d(map.origin.x(), map.origin.y());
+  grid.values.resize(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
+  const double factor = -0.5 / (options.sigma_meters * options.sigma_meters);
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      const double d = field.DistanceAtCell({x, y});
+      grid.values[static_cast<std::size_t>(y * grid.width + x)] =
+          d >= field.max_distance() ? 0.0f : static_cast<float>(std::exp(factor * d * d));
+    }
+  }
+  return grid;
+}
+
+}  // namespace semchain::mapping

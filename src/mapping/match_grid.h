@@ -1,0 +1,47 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mapping/map_io.h"
+
+// The map a scan is matched against by the branch-and-bound and Ceres matchers: a dense grid of
+// M(x) in [0, 1], the "occupancy probability" of seed 001 §2.2 (argmin_T Σ (1 − M(S_i(T)))²).
+// A map_server map is binary, so M is made smooth by a Gaussian of the distance to the nearest
+// occupied cell, M = exp(−d² / 2σ²): a return on a wall scores 1, one σ away 0.61, and the
+// Ceres refinement gets a gradient within a few σ of the walls.
+namespace semchain::mapping {
+
+struct MatchGridOptions {
+  double sigma_meters = 0.05;  // width of the Gaussian around occupied cells
+
+  bool Validate(std::string* error) const;
+};
+
+struct MatchGrid {
+  int width = 0;
+  int height = 0;
+  double resolution = 0.05;
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // lower-left corner of cell (0, 0)
+  std::vector<float> values;                         // row-major, row 0 at y = origin.y
+
+  // M of a cell; 0 outside the grid (nothing is known to be there).
+  float At(int x, int y) const {
+    if (x < 0 || y < 0 || x >= width || y >= height) return 0.0f;
+    return values[static_cast<std::size_t>(y * width + x)];
+  }
+  // Continuous cell coordinates of 'world' (cell (i, j) spans [i, i+1) × [j, j+1)).
+  Eigen::Vector2d ToGrid(const Eigen::Vector2d& world) const {
+    return (world - origin) / resolution;
+  }
+  Eigen::Vector2d Center() const {
+    return origin + 0.5 * resolution * Eigen::Vector2d(width, height);
+  }
+};
+
+// M for 'map' (occupied cells as map_server thresholds them).
+MatchGrid MakeMatchGrid(const MapImage& map, const MatchGridOptions& options = {});
+
+}  // namespace semchain::mapping
