@@ -133,6 +133,11 @@ Status RunDetect(const DetectArgs& args) {
     if (!listed.ok()) return listed.status();
     files = std::move(*listed);
   }
+  std::error_code ec;
+  if (run && fs::exists(out, ec) && fs::equivalent(images, out, ec)) {
+    return Status::Error(args.out + ": --out must not be the run directory itself (its " +
+                         "detections.jsonl is the simulator's record)");
+  }
   SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(out));
   Result<std::vector<FrameDetections>> frames = std::vector<FrameDetections>();
   if (run) {

@@ -31,6 +31,9 @@ Result<cv::dnn::Net> ReadNet(const fs::path& model_path) {
                          ": OpenCV DNN cannot load this ONNX model (export the raw head, opset "
                          "12, static shapes; see README): " +
                          OpenCvMessage(error));
+  } catch (const std::exception& error) {
+    return Status::Error(model_path.string() +
+                         ": OpenCV DNN cannot load this ONNX model: " + error.what());
   }
 }
 
@@ -89,6 +92,8 @@ Result<cv::Mat> YoloDetector::Forward(const cv::Mat& input_rgb) {
   } catch (const cv::Exception& error) {
     return Status::Error("OpenCV DNN cannot run the model at " + std::to_string(input_rgb.cols) +
                          "x" + std::to_string(input_rgb.rows) + ": " + OpenCvMessage(error));
+  } catch (const std::exception& error) {
+    return Status::Error("OpenCV DNN cannot run the model: " + std::string(error.what()));
   }
 }
 
