@@ -60,6 +60,7 @@ class Graph:
         self.initializers = []
         self.count = 0
         self.shared = {}  # bytes of a constant -> its name: strides share their head weights
+        self.channels = {}  # channel counts of the tensors run_lengths reads
 
     def name(self, stem):
         self.count += 1
@@ -137,9 +138,18 @@ def stride_features(g, m, channels, s, with_ones):
         block_y[1, ones, :, 0] = 1.0
     sx = g.conv(rows, block_x, None, "block_x", strides=[1, s], pads=[0, h, 0, 0])
     sy = g.conv(cols, block_y, None, "block_y", strides=[s, 1], pads=[h, 0, 0, 0])
+    g.channels[sx] = g.channels[sy] = sums
+    # The blocks [ax_i, ax_i + s) after each anchor: the last one reaches into the zero padding,
+    # so that a rectangle touching the right (bottom) border is measured whole.
+    after_x = np.zeros((1, channels, 1, s + h))
+    after_x[0, u, 0, h:] = 1.0 / s
+    tx = g.conv(rows, after_x, None, "after_x", strides=[1, s], pads=[0, 0, 0, h])
+    ty = g.conv(cols, after_x.transpose(0, 1, 3, 2), None, "after_y", strides=[s, 1],
+                pads=[0, 0, h, 0])
+    g.channels[tx] = g.channels[ty] = 1
 
-    left, right = run_lengths(g, sx, sums, s, vertical=False)
-    top, bottom = run_lengths(g, sy, sums, s, vertical=True)
+    left, right = run_lengths(g, sx, tx, s, vertical=False)
+    top, bottom = run_lengths(g, sy, ty, s, vertical=True)
     ltrb = g.op("Concat", [left, top, right, bottom], "ltrb", axis=1)
 
     anchors = None
@@ -155,10 +165,11 @@ def stride_features(g, m, channels, s, with_ones):
     return ltrb, inside, anchors
 
 
-def run_lengths(g, blocks, channels, s, vertical):
+def run_lengths(g, before, after, s, vertical):
     """The mask's run lengths (grid units) before and after the anchor along a row (column).
 
-    Channel 0 of 'blocks' holds S_i, the share of mask pixels in block i (grid units). Going
+    Channel 0 of 'before' holds S_i, the share of mask pixels in the block of s pixels just
+    before anchor i (grid units), channel 0 of 'after' that of the block just after it. Going
     away from the anchor, the distance to the rectangle's edge is the sum of S over the blocks
     up to and including the first block that is not full: d = sum_j P_j S_(i-j), where
     P_j = F_i ... F_(i-j+1) is 1 while all blocks nearer than j are full (F = 1 iff S = 1).
@@ -169,27 +180,28 @@ def run_lengths(g, blocks, channels, s, vertical):
     def kernel(weights):  # horizontal (out, in, 1, k) -> vertical (out, in, k, 1)
         return weights.transpose(0, 1, 3, 2) if vertical else weights
 
-    def pads(before, after):
-        return [before, 0, after, 0] if vertical else [0, before, 0, after]
+    def pads(first, last):
+        return [first, 0, last, 0] if vertical else [0, first, 0, last]
 
-    full_w = np.zeros((1, channels, 1, 1))
-    full_w[0, 0] = s  # F = relu(s S - (s - 1)): 1 for s pixels of s, else 0
-    full = g.op("Relu", [g.conv(blocks, full_w, [-(s - 1.0)], "full")], "full_relu")
     distances = []
-    for side in ("before", "after"):
+    for blocks, toward_start in ((before, True), (after, False)):
+        channels = g.channels[blocks]
+        full_w = np.zeros((1, channels, 1, 1))
+        full_w[0, 0] = s  # F = relu(s S - (s - 1)): 1 for s pixels of s, else 0
+        full = g.op("Relu", [g.conv(blocks, full_w, [-(s - 1.0)], "full")], "full_relu")
+
         # Kernel tap t covers block i - (REACH - 1) + t (before) or i + t (after).
-        def tap(m):  # tap of the block m steps away from the anchor (m = 0: i or i + 1)
-            return REACH - 1 - m if side == "before" else m + 1
-        width = REACH if side == "before" else REACH + 1
-        pad = pads(REACH - 1, 0) if side == "before" else pads(0, REACH)
-        p_w = np.zeros((REACH, 1, 1, width))
+        def tap(m):  # tap of the block m steps away from the anchor
+            return REACH - 1 - m if toward_start else m
+        pad = pads(REACH - 1, 0) if toward_start else pads(0, REACH - 1)
+        p_w = np.zeros((REACH, 1, 1, REACH))
         p_b = np.zeros(REACH)
         for j in range(REACH):
             for m in range(j):
                 p_w[j, 0, 0, tap(m)] = 1.0
             p_b[j] = 1.0 - j
         prefix = g.op("Relu", [g.conv(full, kernel(p_w), p_b, "prefix", pads=pad)], "prefix_relu")
-        s_w = np.zeros((REACH, channels, 1, width))
+        s_w = np.zeros((REACH, channels, 1, REACH))
         for j in range(REACH):
             s_w[j, 0, 0, tap(j)] = 1.0
         shifted = g.conv(blocks, kernel(s_w), np.full(REACH, -1.0), "shifted", pads=pad)

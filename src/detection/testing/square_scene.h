@@ -30,6 +30,15 @@ inline std::vector<Square> SceneSquares() {
           {0, cv::Rect(560, 380, 24, 24)}};
 }
 
+// Rectangles touching the image border, and one larger than the stride-8 anchors can reach
+// (15 strides = 120 pixels from its centre at a 640-pixel input).
+inline std::vector<Square> BorderSquares() {
+  return {{0, cv::Rect(0, 0, 60, 40)},
+          {1, cv::Rect(600, 400, 40, 80)},
+          {2, cv::Rect(200, 80, 320, 260)},
+          {0, cv::Rect(300, 440, 100, 40)}};
+}
+
 // A 640 x 480 RGB image of 'squares' in pure red, green and blue on a dark grey background.
 inline cv::Mat SquareImage(const std::vector<Square>& squares, cv::Size size = {640, 480}) {
   cv::Mat rgb(size, CV_8UC3, cv::Scalar(60, 60, 60));
