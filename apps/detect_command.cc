@@ -119,11 +119,8 @@ Result<std::vector<FrameDetections>> DetectImages(detection::Detector& detector,
 Status RunDetect(const DetectArgs& args) {
   Result<detection::YoloOptions> options = BuildOptions(args);
   if (!options.ok()) return options.status();
-  SEMCHAIN_RETURN_IF_ERROR(detection::CheckModelFile(args.model));
-  Result<std::vector<std::string>> names = detection::LoadModelClassNames(args.model, args.classes);
-  if (!names.ok()) return names.status();
   Result<std::unique_ptr<detection::YoloDetector>> detector =
-      detection::YoloDetector::Load(args.model, std::move(*names), *options);
+      detection::LoadYoloDetector(args.model, args.classes, *options);
   if (!detector.ok()) return detector.status();
   const fs::path images(args.images), out(args.out);
   const bool run = detection::IsRunDirectory(images);

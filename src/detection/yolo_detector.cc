@@ -151,4 +151,13 @@ Result<std::vector<std::string>> LoadModelClassNames(const fs::path& model_path,
   return names;
 }
 
+Result<std::unique_ptr<YoloDetector>> LoadYoloDetector(const fs::path& model_path,
+                                                       const fs::path& classes_path,
+                                                       const YoloOptions& options) {
+  SEMCHAIN_RETURN_IF_ERROR(CheckModelFile(model_path));
+  Result<std::vector<std::string>> names = LoadModelClassNames(model_path, classes_path);
+  if (!names.ok()) return names.status();
+  return YoloDetector::Load(model_path, std::move(*names), options);
+}
+
 }  // namespace semchain::detection

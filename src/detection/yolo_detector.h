@@ -66,4 +66,10 @@ Status CheckModelFile(const std::filesystem::path& model_path);
 Result<std::vector<std::string>> LoadModelClassNames(const std::filesystem::path& model_path,
                                                      const std::filesystem::path& classes_path);
 
+// What `--model M.onnx [--classes FILE]` means: CheckModelFile, LoadModelClassNames, then
+// YoloDetector::Load; the first error is returned.
+Result<std::unique_ptr<YoloDetector>> LoadYoloDetector(const std::filesystem::path& model_path,
+                                                       const std::filesystem::path& classes_path,
+                                                       const YoloOptions& options);
+
 }  // namespace semchain::detection

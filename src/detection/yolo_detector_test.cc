@@ -171,6 +171,19 @@ TEST(YoloDetectorTest, ValidatesOptions) {
             "input size 330x640: width and height must be positive multiples of 32");
 }
 
+TEST(LoadYoloDetectorTest, ReadsTheNamesBesideTheModelAndReportsAMissingModelFirst) {
+  Result<std::unique_ptr<YoloDetector>> detector =
+      LoadYoloDetector(TestModel("tiny_squares_decoded.onnx"), {}, YoloOptions());
+  ASSERT_TRUE(detector.ok()) << detector.status().message();
+  EXPECT_EQ((*detector)->class_names(), SquareClasses());
+  EXPECT_EQ((*detector)->head().kind, HeadKind::kDecoded);
+  Result<std::unique_ptr<YoloDetector>> missing =
+      LoadYoloDetector(TestModel("nothing.onnx"), {}, YoloOptions());
+  ASSERT_FALSE(missing.ok());
+  EXPECT_EQ(missing.status().message(),
+            TestModel("nothing.onnx").string() + ": no such model file");
+}
+
 TEST(LoadModelClassNamesTest, ReadsTheNamesBesideTheModelOrTheOverride) {
   Result<std::vector<std::string>> beside =
       LoadModelClassNames(TestModel("tiny_squares_raw.onnx"), {});
