@@ -51,22 +51,47 @@ void BM_Detect(benchmark::State& state, const std::string& model, cv::Size input
 
 // The parts of BM_Detect: OpenCV's forward pass alone (blob and forward), and the decoding and
 // NMS of its output alone. Random weights give more candidates than a trained model would.
+// The network's output on a grey input, or an error message.
+Result<cv::Mat> GreyOutput(cv::dnn::Net& net, cv::Size input) {
+  try {
+    net.setInput(cv::dnn::blobFromImage(cv::Mat(input, CV_8UC3, cv::Scalar::all(kLetterboxGrey)),
+                                        1.0 / 255.0));
+    return net.forward().clone();
+  } catch (const cv::Exception& error) {
+    return Status::Error(error.what());
+  }
+}
+
+Result<cv::dnn::Net> ReadModel(const std::string& model) {
+  try {
+    return cv::dnn::readNetFromONNX(model);
+  } catch (const cv::Exception& error) {
+    return Status::Error(error.what());
+  }
+}
+
 void BM_Forward(benchmark::State& state, const std::string& model, cv::Size input) {
-  cv::dnn::Net net = cv::dnn::readNetFromONNX(model);
+  Result<cv::dnn::Net> net = ReadModel(model);
+  if (!net.ok() || !GreyOutput(*net, input).ok()) {
+    state.SkipWithError("OpenCV cannot run the model");
+    return;
+  }
   const cv::Mat image(input, CV_8UC3, cv::Scalar::all(kLetterboxGrey));
   for (auto _ : state) {
-    net.setInput(cv::dnn::blobFromImage(image, 1.0 / 255.0));
-    const cv::Mat output = net.forward();
+    net->setInput(cv::dnn::blobFromImage(image, 1.0 / 255.0));
+    const cv::Mat output = net->forward();
     benchmark::DoNotOptimize(output.data);
   }
 }
 
 void BM_Postprocess(benchmark::State& state, const std::string& model, cv::Size input) {
-  cv::dnn::Net net = cv::dnn::readNetFromONNX(model);
-  net.setInput(cv::dnn::blobFromImage(cv::Mat(input, CV_8UC3, cv::Scalar::all(kLetterboxGrey)),
-                                      1.0 / 255.0));
-  const cv::Mat output = net.forward().clone();
-  Result<HeadLayout> head = IdentifyHead(output, output.size[1] - 4 * kRegMax, input);
+  Result<cv::dnn::Net> net = ReadModel(model);
+  Result<cv::Mat> output = net.ok() ? GreyOutput(*net, input) : Result<cv::Mat>(net.status());
+  if (!output.ok()) {
+    state.SkipWithError("OpenCV cannot run the model");
+    return;
+  }
+  Result<HeadLayout> head = IdentifyHead(*output, output->size[1] - 4 * kRegMax, input);
   if (!head.ok()) {
     state.SkipWithError(head.status().message().c_str());
     return;
@@ -76,7 +101,7 @@ void BM_Postprocess(benchmark::State& state, const std::string& model, cv::Size 
   std::size_t candidates = 0, kept = 0;
   for (auto _ : state) {
     const std::vector<Candidate> found =
-        DecodeHead(output, *head, anchors, options.confidence_threshold);
+        DecodeHead(*output, *head, anchors, options.confidence_threshold);
     candidates = found.size();
     kept = ClassWiseNms(found, options.nms_iou_threshold, options.max_detections).size();
   }

@@ -14,6 +14,7 @@ random, so the detections mean nothing; bench/detect_bench.cc uses it to time in
 """
 
 import argparse
+import math
 import os
 
 import torch
@@ -135,14 +136,34 @@ class YoloV8n(nn.Module):
         return self.detect([h15, h18, h21])
 
 
+def init_weights(model):
+    """Random weights that keep activations near unit scale through the network (He normal;
+    PyTorch's default init shrinks them layer by layer into float denormals, which are slow and
+    would distort the timing), and ultralytics' Detect.bias_init for the class logits, so that
+    as with a trained model few anchors pass the confidence threshold."""
+    # No two weight tensors may be equal (e.g. all-zero biases): torch.onnx then shares one
+    # initializer through Identity nodes, which OpenCV 4.6 cannot load.
+    torch.manual_seed(0)
+    for m in model.modules():
+        if isinstance(m, nn.Conv2d):
+            nn.init.kaiming_normal_(m.weight, nonlinearity="relu")
+            nn.init.normal_(m.bias, std=0.01)
+    head = model.detect
+    for box, cls, stride in zip(head.cv2, head.cv3, (8, 16, 32)):
+        nn.init.normal_(box[-1].weight, std=0.01)
+        nn.init.normal_(box[-1].bias, mean=1.0, std=0.01)
+        nn.init.normal_(cls[-1].weight, std=0.01)
+        nn.init.normal_(cls[-1].bias, mean=math.log(5 / 80 / (640 / stride) ** 2), std=0.01)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", nargs="?", default="out/yolov8n_random_raw.onnx")
     parser.add_argument("--size", default="640x640", help="static input WIDTHxHEIGHT")
     args = parser.parse_args()
     width, height = (int(v) for v in args.size.split("x"))
-    torch.manual_seed(0)
     model = YoloV8n().eval()
+    init_weights(model)
     print(f"parameters: {sum(p.numel() for p in model.parameters()) / 1e6:.2f} M")
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with torch.no_grad():
