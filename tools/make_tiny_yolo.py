@@ -15,8 +15,8 @@ channel, 0 on the others) with hand-set weights, and report their boxes exactly:
 
 with N anchors of the strides 8, 16 and 32, row-major per stride, anchor centres at
 ((i + 0.5) * stride, (j + 0.5) * stride), as ultralytics YOLOv8 lays them out. Every op is one
-that OpenCV 4.6 DNN runs (Conv with groups and asymmetric pads, Relu, Log, Sigmoid, Concat,
-Reshape), opset 12, and no layer depends on the input size: any width and height that are
+that OpenCV 4.6 DNN runs (Conv with groups and asymmetric pads, Relu, Add, Log, Sigmoid,
+Concat, Reshape), opset 12, and no layer depends on the input size: any width and height that are
 multiples of 32 work (the decoded model up to 1024 pixels a side).
 
 How the weights make the boxes exact, per stride s and anchor (ax, ay):
@@ -32,9 +32,10 @@ How the weights make the boxes exact, per stride s and anchor (ax, ay):
      decoder's softmax gives back w (to 1e-7) and its expectation gives back t.
   4. the class logit is +10 where the anchor's pixel has the class's colour and all four edges
      are within reach (t < 15), else -10 or less.
-Limits (a test model, not a detector): rectangles in the same rows (columns) must be at least
-32 input pixels apart, and every anchor inside a rectangle fires with the same box, so the
-detector's NMS must merge them.
+Limits (a test model, not a detector): rectangle edges must fall on whole pixels of the network
+input (after a 2x letterbox downscale: even image coordinates), rectangles in the same rows
+(columns) must be at least 32 input pixels apart, and every anchor inside a rectangle fires
+with the same box, so the detector's NMS must merge them.
 """
 
 import os
