@@ -21,7 +21,8 @@ struct YoloOptions {
   int input_height = 640;
   // Detections scoring below this are dropped (ultralytics' predict default).
   double confidence_threshold = 0.25;
-  // Same-class boxes overlapping a better one by more than this IoU are dropped.
+  // Same-class boxes overlapping a better one by more than this IoU are dropped (OpenCV's and
+  // YOLOv5's usual value; ultralytics' predict uses 0.7, which keeps more near-duplicates).
   double nms_iou_threshold = 0.45;
   // At most this many detections per image, best first.
   int max_detections = 300;
