@@ -13,6 +13,7 @@ void AddRenderCommand(CLI::App& app, int& exit_code);
 void AddSlamCommand(CLI::App& app, int& exit_code);
 void AddSemanticCommand(CLI::App& app, int& exit_code);
 void AddEvalCommand(CLI::App& app, int& exit_code);
+void AddDetectCommand(CLI::App& app, int& exit_code);
 void AddBenchCommand(CLI::App& app, int& exit_code);
 void AddPlanCommand(CLI::App& app, int& exit_code);
 // `bench localize` (bench_localize_command.cc), registered by AddBenchCommand.

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   semchain::app::AddSlamCommand(app, exit_code);
   semchain::app::AddSemanticCommand(app, exit_code);
   semchain::app::AddEvalCommand(app, exit_code);
+  semchain::app::AddDetectCommand(app, exit_code);
   semchain::app::AddBenchCommand(app, exit_code);
   semchain::app::AddPlanCommand(app, exit_code);
   try {

@@ -1,0 +1,163 @@
+#include "detection/yolo_detector.h"
+
+#include <algorithm>
+#include <system_error>
+
+#include "detection/class_nms.h"
+#include "detection/letterbox.h"
+#include "io/detections_io.h"
+
+namespace semchain::detection {
+namespace fs = std::filesystem;
+namespace {
+
+// OpenCV's message without its file, line and function decoration, on one line.
+std::string OpenCvMessage(const cv::Exception& error) {
+  std::string message = error.err.empty() ? error.what() : error.err;
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  return message;
+}
+
+Result<cv::dnn::Net> ReadNet(const fs::path& model_path) {
+  SEMCHAIN_RETURN_IF_ERROR(CheckModelFile(model_path));
+  try {
+    cv::dnn::Net net = cv::dnn::readNetFromONNX(model_path.string());
+    if (net.empty()) return Status::Error(model_path.string() + ": OpenCV read an empty network");
+    net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+    net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+    return net;
+  } catch (const cv::Exception& error) {
+    return Status::Error(model_path.string() +
+                         ": OpenCV DNN cannot load this ONNX model (export the raw head, opset "
+                         "12, static shapes; see README): " +
+                         OpenCvMessage(error));
+  } catch (const std::exception& error) {
+    return Status::Error(model_path.string() +
+                         ": OpenCV DNN cannot load this ONNX model: " + error.what());
+  }
+}
+
+}  // namespace
+
+bool YoloOptions::Validate(std::string* error) const {
+  if (input_width <= 0 || input_height <= 0 || input_width % 32 != 0 || input_height % 32 != 0) {
+    *error = "input size " + std::to_string(input_width) + "x" + std::to_string(input_height) +
+             ": width and height must be positive multiples of 32";
+    return false;
+  }
+  if (!(confidence_threshold > 0.0 && confidence_threshold <= 1.0)) {
+    *error = "confidence threshold must be in (0, 1]";
+    return false;
+  }
+  if (!(nms_iou_threshold > 0.0 && nms_iou_threshold <= 1.0)) {
+    *error = "NMS IoU threshold must be in (0, 1]";
+    return false;
+  }
+  if (max_detections <= 0) {
+    *error = "max_detections must be positive";
+    return false;
+  }
+  return true;
+}
+
+Result<std::unique_ptr<YoloDetector>> YoloDetector::Load(const fs::path& model_path,
+                                                         std::vector<std::string> class_names,
+                                                         const YoloOptions& options) {
+  std::string error;
+  if (!options.Validate(&error)) return Status::Error(error);
+  if (class_names.empty()) return Status::Error(model_path.string() + ": no class names");
+  Result<cv::dnn::Net> net = ReadNet(model_path);
+  if (!net.ok()) return net.status();
+  std::unique_ptr<YoloDetector> detector(
+      new YoloDetector(std::move(*net), std::move(class_names), options));
+  const cv::Mat grey(options.input_size(), CV_8UC3, cv::Scalar::all(kLetterboxGrey));
+  Result<cv::Mat> output = detector->Forward(grey);
+  if (!output.ok()) return output.status().WithContext(model_path.string());
+  Result<HeadLayout> head =
+      IdentifyHead(*output, int(detector->class_names_.size()), options.input_size());
+  if (!head.ok()) return head.status().WithContext(model_path.string());
+  detector->head_ = *head;
+  detector->anchors_ = MakeAnchors(options.input_size());
+  return detector;
+}
+
+Result<cv::Mat> YoloDetector::Forward(const cv::Mat& input_rgb) {
+  // The image is already RGB (what YOLOv8 was trained on): no channel swap here.
+  const cv::Mat blob = cv::dnn::blobFromImage(input_rgb, 1.0 / 255.0, cv::Size(), cv::Scalar(),
+                                              /*swapRB=*/false, /*crop=*/false, CV_32F);
+  try {
+    net_.setInput(blob);
+    cv::Mat output = net_.forward();
+    return output.isContinuous() ? output : output.clone();
+  } catch (const cv::Exception& error) {
+    return Status::Error("OpenCV DNN cannot run the model at " + std::to_string(input_rgb.cols) +
+                         "x" + std::to_string(input_rgb.rows) + ": " + OpenCvMessage(error));
+  } catch (const std::exception& error) {
+    return Status::Error("OpenCV DNN cannot run the model: " + std::string(error.what()));
+  }
+}
+
+Result<std::vector<Detection>> YoloDetector::Detect(const cv::Mat& rgb) {
+  if (rgb.empty() || rgb.type() != CV_8UC3) {
+    return Status::Error("the detector needs a non-empty 8-bit 3-channel RGB image");
+  }
+  const Letterbox letterbox = FitLetterbox(rgb.size(), options_.input_size());
+  Result<cv::Mat> output = Forward(ApplyLetterbox(rgb, letterbox));
+  if (!output.ok()) return output.status();
+  Result<HeadLayout> head = IdentifyHead(*output, head_.classes, options_.input_size());
+  if (!head.ok()) return head.status();
+  const std::vector<Candidate> candidates =
+      DecodeHead(*output, *head, anchors_, options_.confidence_threshold);
+  std::vector<Detection> detections;
+  const double limits[4] = {double(rgb.cols), double(rgb.rows), double(rgb.cols), double(rgb.rows)};
+  for (int index : ClassWiseNms(candidates, options_.nms_iou_threshold, options_.max_detections)) {
+    const Candidate& candidate = candidates[index];
+    const cv::Point2d top_left = letterbox.ToImage(candidate.box.tl());
+    const cv::Point2d bottom_right = letterbox.ToImage(candidate.box.br());
+    Detection detection;
+    detection.class_id = candidate.class_id;
+    detection.class_name = class_names_[candidate.class_id];
+    detection.score = std::clamp(double(candidate.score), 0.0, 1.0);
+    const double corners[4] = {top_left.x, top_left.y, bottom_right.x, bottom_right.y};
+    for (int i = 0; i < 4; ++i) detection.box[i] = std::clamp(corners[i], 0.0, limits[i]);
+    if (detection.box[2] <= detection.box[0] || detection.box[3] <= detection.box[1]) continue;
+    detections.push_back(std::move(detection));
+  }
+  return detections;
+}
+
+Status CheckModelFile(const fs::path& model_path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(model_path, ec)) {
+    return Status::Error(model_path.string() + ": no such model file");
+  }
+  return Status::Ok();
+}
+
+Result<std::vector<std::string>> LoadModelClassNames(const fs::path& model_path,
+                                                     const fs::path& classes_path) {
+  fs::path path = classes_path;
+  if (path.empty()) {
+    path = model_path;
+    path.replace_extension(".names");
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    return Status::Error(path.string() + ": no class-names file (one name per line, beside " +
+                         "the model with the same stem, or --classes FILE)");
+  }
+  Result<std::vector<std::string>> names = ReadClassNames(path);
+  if (names.ok() && names->empty()) return Status::Error(path.string() + ": no class names");
+  return names;
+}
+
+Result<std::unique_ptr<YoloDetector>> LoadYoloDetector(const fs::path& model_path,
+                                                       const fs::path& classes_path,
+                                                       const YoloOptions& options) {
+  SEMCHAIN_RETURN_IF_ERROR(CheckModelFile(model_path));
+  Result<std::vector<std::string>> names = LoadModelClassNames(model_path, classes_path);
+  if (!names.ok()) return names.status();
+  return YoloDetector::Load(model_path, std::move(*names), options);
+}
+
+}  // namespace semchain::detection

@@ -1,0 +1,76 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <opencv2/dnn.hpp>
+#include <string>
+#include <vector>
+
+#include "detection/detector.h"
+#include "detection/yolo_head.h"
+
+// A YOLOv8-format ONNX detector run through OpenCV DNN (DESIGN.md §3.10): letterbox, 1/255
+// scaling, the raw head (DFL decoded here) or the decoded head, confidence threshold and
+// class-wise NMS, boxes mapped back to the image.
+namespace semchain::detection {
+
+struct YoloOptions {
+  // The network input in pixels, both multiples of 32 (the largest stride). A model exported
+  // with static shapes expects its export size; fully convolutional ones run at any size.
+  int input_width = 640;
+  int input_height = 640;
+  // Detections scoring below this are dropped (ultralytics' predict default).
+  double confidence_threshold = 0.25;
+  // Same-class boxes overlapping a better one by more than this IoU are dropped (OpenCV's and
+  // YOLOv5's usual value; ultralytics' predict uses 0.7, which keeps more near-duplicates).
+  double nms_iou_threshold = 0.45;
+  // At most this many detections per image, best first.
+  int max_detections = 300;
+
+  bool Validate(std::string* error) const;
+  cv::Size input_size() const { return {input_width, input_height}; }
+};
+
+class YoloDetector final : public Detector {
+ public:
+  // Loads 'model_path' with the class names 'class_names' (class-id order) and runs it once on
+  // a grey input so that a model OpenCV cannot run, an output of the wrong shape or a
+  // class-count mismatch is reported here, once, with the model's path in front.
+  static Result<std::unique_ptr<YoloDetector>> Load(const std::filesystem::path& model_path,
+                                                    std::vector<std::string> class_names,
+                                                    const YoloOptions& options);
+
+  Result<std::vector<Detection>> Detect(const cv::Mat& rgb) override;
+  const std::vector<std::string>& class_names() const override { return class_names_; }
+  const HeadLayout& head() const { return head_; }
+  const YoloOptions& options() const { return options_; }
+
+ private:
+  YoloDetector(cv::dnn::Net net, std::vector<std::string> class_names, const YoloOptions& options)
+      : net_(std::move(net)), class_names_(std::move(class_names)), options_(options) {}
+
+  // The network's output for a letterboxed RGB input (CV_8UC3 of the input size).
+  Result<cv::Mat> Forward(const cv::Mat& input_rgb);
+
+  cv::dnn::Net net_;
+  std::vector<std::string> class_names_;
+  YoloOptions options_;
+  HeadLayout head_;
+  std::vector<Anchor> anchors_;
+};
+
+// An error naming 'model_path' when it is not a readable file ("M.onnx: no such model file").
+Status CheckModelFile(const std::filesystem::path& model_path);
+
+// The class names of 'model_path': read from 'classes_path' when it is not empty, else from
+// the file beside the model with the same stem and the extension ".names" (DESIGN.md §5.5).
+Result<std::vector<std::string>> LoadModelClassNames(const std::filesystem::path& model_path,
+                                                     const std::filesystem::path& classes_path);
+
+// What `--model M.onnx [--classes FILE]` means: CheckModelFile, LoadModelClassNames, then
+// YoloDetector::Load; the first error is returned.
+Result<std::unique_ptr<YoloDetector>> LoadYoloDetector(const std::filesystem::path& model_path,
+                                                       const std::filesystem::path& classes_path,
+                                                       const YoloOptions& options);
+
+}  // namespace semchain::detection
