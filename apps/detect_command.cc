@@ -14,7 +14,6 @@
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -44,12 +43,7 @@ struct DetectArgs {
 
 Result<detection::YoloOptions> BuildOptions(const DetectArgs& args) {
   detection::YoloOptions options;
-  std::smatch match;
-  if (!std::regex_match(args.input, match, std::regex(R"((\d{1,5})x(\d{1,5}))"))) {
-    return Status::Error("--input " + args.input + ": expected WIDTHxHEIGHT, e.g. 640x640");
-  }
-  options.input_width = std::stoi(match[1]);
-  options.input_height = std::stoi(match[2]);
+  SEMCHAIN_RETURN_IF_ERROR(detection::ParseInputSize(args.input, &options));
   options.confidence_threshold = args.confidence;
   options.nms_iou_threshold = args.nms;
   std::string error;

@@ -9,9 +9,11 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/semantic_drawing.h"
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
+#include "semantic/semantic_map_io.h"
 #include "sim/world.h"
 #include "sim/world_drawing.h"
 
@@ -39,6 +41,7 @@ struct Picture {
   std::optional<mapping::MapImage> map;
   std::vector<Pose2> truth, odometry, slam;
   std::vector<Eigen::Vector2d> scan_points;
+  std::optional<semantic::SemanticMap> semantic;  // a map directory's semantic.json
 };
 
 // The pose at 'time' on a trajectory sorted by time (linear between samples, clamped).
@@ -119,6 +122,11 @@ Status ReadMapDirectory(const fs::path& dir, const RenderArgs& args, Picture& pi
     return Status::Error((dir / "map.yaml").string() + ": rotated map origins are not supported");
   }
   picture.map = std::move(*map);
+  if (fs::exists(dir / "semantic.json")) {
+    Result<semantic::SemanticMap> objects = semantic::ReadSemanticJson(dir / "semantic.json");
+    if (!objects.ok()) return objects.status();
+    picture.semantic = std::move(*objects);
+  }
   if (fs::exists(dir / "trajectory.txt")) {
     Result<std::vector<StampedPose>> slam = ReadTrajectory(dir / "trajectory.txt");
     if (!slam.ok()) return slam.status();
@@ -165,6 +173,7 @@ Status Draw(const Picture& picture, const RenderArgs& args) {
                        picture.map->resolution, *canvas);
   }
   if (picture.world) sim::DrawWorld(*picture.world, *canvas);
+  if (picture.semantic) DrawSemanticMap(*picture.semantic, *canvas);
   sim::DrawPoints(picture.scan_points, kScanColor, "laser returns", *canvas);
   sim::DrawTrajectory(picture.odometry, kOdometryColor, "odometry", *canvas);
   sim::DrawTrajectory(picture.truth, kTruthColor, "truth", *canvas);
@@ -197,7 +206,7 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "render",
       "Draw a world file, a run directory (trajectories, laser returns, its world) or a map "
-      "directory (map, SLAM trajectory) top-down as a PNG");
+      "directory (map, SLAM trajectory, semantic objects and chains) top-down as a PNG");
   auto args = std::make_shared<RenderArgs>();
   command->add_option("input", args->input, "World YAML, RUN directory or MAP directory")
       ->required();

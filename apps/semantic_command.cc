@@ -1,7 +1,9 @@
 // semchain semantic --run RUN --map MAP [--poses MAP/trajectory.txt] --out MAP
-// Semantic mapping (DESIGN.md §3.4–3.5): the run's detections and depth frames, posed by the
-// SLAM trajectory, onto the SLAM map; writes OUT/semantic.json, OUT/keyframes.json and
-// OUT/semantic.png (and copies the map into OUT when OUT is another directory).
+//                   [--detector M.onnx [--classes F] [--detector-input WxH]]
+// Semantic mapping (DESIGN.md §3.4–3.5): the run's detections (RUN/detections.jsonl, or a
+// YOLOv8-format model run on the frames) and depth frames, posed by the SLAM trajectory, onto
+// the SLAM map; writes OUT/semantic.json, OUT/keyframes.json and OUT/semantic.png (and copies
+// the map into OUT when OUT is another directory).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -14,6 +16,8 @@
 #include "apps/semantic_drawing.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
+#include "detection/run_detection.h"
+#include "detection/yolo_detector.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
 #include "semantic/keyframes.h"
@@ -33,7 +37,24 @@ struct SemanticArgs {
   std::string poses;
   std::string out;
   double scale = 50.0;
+  std::string detector;  // a YOLOv8-format ONNX model instead of RUN/detections.jsonl
+  std::string classes;
+  std::string detector_input = "320x256";
 };
+
+// The detections of the run's frames by the model of --detector.
+Result<std::vector<FrameDetections>> DetectWithModel(const SemanticArgs& args) {
+  detection::YoloOptions options;
+  SEMCHAIN_RETURN_IF_ERROR(detection::ParseInputSize(args.detector_input, &options));
+  std::string invalid;
+  if (!options.Validate(&invalid)) return Status::Error("--detector-input: " + invalid);
+  Result<std::unique_ptr<detection::YoloDetector>> detector =
+      detection::LoadYoloDetector(args.detector, args.classes, options);
+  if (!detector.ok()) return detector.status();
+  detection::RunDetectionOptions run_options;
+  run_options.show_progress = true;
+  return detection::DetectRunFrames(**detector, args.run, run_options);
+}
 
 // Grey map (free white, occupied black, unknown grey), row 0 at the top; free cells of odd
 // regions a shade darker so that the regions the chains are built on can be told apart.
@@ -80,10 +101,14 @@ Status RunSemantic(const SemanticArgs& args) {
       args.poses.empty() ? map_dir / "trajectory.txt" : fs::path(args.poses);
   Result<std::vector<StampedPose>> poses = ReadTrajectory(poses_path);
   if (!poses.ok()) return poses.status();
-  SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(out));
 
   semantic::SemanticRunInputs inputs;
   inputs.run_dir = args.run;
+  if (!args.detector.empty()) {
+    Result<std::vector<FrameDetections>> detections = DetectWithModel(args);
+    if (!detections.ok()) return detections.status();
+    inputs.detections = std::move(*detections);
+  }
   inputs.occupancy = *map;
   inputs.trajectory = std::move(*poses);
   inputs.trajectory_source = poses_path.string();
@@ -97,6 +122,7 @@ Status RunSemantic(const SemanticArgs& args) {
   if (!result.ok()) return result.status();
 
   // Everything is computed before anything is written; each file is written atomically.
+  SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(out));
   std::error_code error;
   if (fs::weakly_canonical(out, error) != fs::weakly_canonical(map_dir, error)) {
     SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(out / "map.yaml", *map));
@@ -133,6 +159,14 @@ void AddSemanticCommand(CLI::App& app, int& exit_code) {
                       "Trajectory posing the frames (default: MAP/trajectory.txt)");
   command->add_option("--out", args->out, "Output directory (usually the map directory)")
       ->required();
+  command->add_option("--detector", args->detector,
+                      "YOLOv8-format ONNX model to run on the frames instead of reading "
+                      "RUN/detections.jsonl (class names from M.names beside it)");
+  command->add_option("--classes", args->classes, "Class-names file of --detector");
+  command
+      ->add_option("--detector-input", args->detector_input,
+                   "Network input WIDTHxHEIGHT of --detector (multiples of 32)")
+      ->capture_default_str();
   command->add_option("--scale", args->scale, "Pixels per metre of semantic.png")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1000.0));

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The end-to-end demo on a bundled world: simulate a mapping run, build the map with SLAM and
-# fuse the depth camera into it, score it against the simulator's truth, plan a route S -> P1 ->
-# P2 on the fused map, and draw world, run, map and route as PNG.
+# fuse the depth camera into it, score it against the simulator's truth, put the detected objects
+# on the map and link them into semantic chains, plan a route S -> P1 -> P2 on the fused map, and
+# draw world, run, map (with objects and chains) and route as PNG.
 #   scripts/demo.sh [OUTPUT_DIR [WORLD.yaml]]   (defaults: demo/, worlds/two_similar_rooms.yaml)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -21,7 +22,9 @@ step "slam + depth fusion: $out/run/log.clf and depth frames -> $out/map"
 "$semchain" slam --log "$out/run/log.clf" --out "$out/map" --seed 1 --depth "$out/run"
 step "eval ate: SLAM trajectory against the simulator's truth"
 "$semchain" eval ate --poses "$out/map/trajectory.txt" --truth "$out/run/truth.txt" | tee "$out/ate.json"
-step "render the map"
+step "semantic: detections + depth frames, posed by SLAM -> $out/map/semantic.json (objects, chains)"
+"$semchain" semantic --run "$out/run" --map "$out/map" --out "$out/map"
+step "render the map (with its semantic objects and chains)"
 "$semchain" render "$out/map" --out "$out/map.png"
 # S, P1 and P2: where the robot was at the start, a third and two thirds of the mapping run
 # (free space on every bundled world).

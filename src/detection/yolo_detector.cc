@@ -1,6 +1,7 @@
 #include "detection/yolo_detector.h"
 
 #include <algorithm>
+#include <regex>
 #include <system_error>
 
 #include "detection/class_nms.h"
@@ -8,6 +9,16 @@
 #include "io/detections_io.h"
 
 namespace semchain::detection {
+
+Status ParseInputSize(const std::string& text, YoloOptions* options) {
+  std::smatch match;
+  if (!std::regex_match(text, match, std::regex(R"((\d{1,5})x(\d{1,5}))"))) {
+    return Status::Error("--input " + text + ": expected WIDTHxHEIGHT, e.g. 640x640");
+  }
+  options->input_width = std::stoi(match[1]);
+  options->input_height = std::stoi(match[2]);
+  return Status::Ok();
+}
 namespace fs = std::filesystem;
 namespace {
 

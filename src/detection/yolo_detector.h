@@ -31,6 +31,9 @@ struct YoloOptions {
   cv::Size input_size() const { return {input_width, input_height}; }
 };
 
+// Sets options->input_width and input_height from "WIDTHxHEIGHT" (the CLI's --input).
+Status ParseInputSize(const std::string& text, YoloOptions* options);
+
 class YoloDetector final : public Detector {
  public:
   // Loads 'model_path' with the class names 'class_names' (class-id order) and runs it once on

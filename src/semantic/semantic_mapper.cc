@@ -17,6 +17,26 @@ struct CellKey {
   }
 };
 
+// The area of box 'a' that lies inside box 'b' (pixels²).
+double Intersection(const Detection& a, const Detection& b) {
+  const double w = std::min(a.box[2], b.box[2]) - std::max(a.box[0], b.box[0]);
+  const double h = std::min(a.box[3], b.box[3]) - std::max(a.box[1], b.box[1]);
+  return w > 0.0 && h > 0.0 ? w * h : 0.0;
+}
+
+// A box mostly inside a larger box of the same class is the detector seeing part of the same
+// object again (one face of it), not a second object: two objects side by side do not nest.
+bool IsNestedDuplicate(const Detection& detection, const std::vector<Detection>& frame) {
+  constexpr double kInside = 0.8;
+  const double area = (detection.box[2] - detection.box[0]) * (detection.box[3] - detection.box[1]);
+  for (const Detection& other : frame) {
+    if (&other == &detection || other.class_name != detection.class_name) continue;
+    const double other_area = (other.box[2] - other.box[0]) * (other.box[3] - other.box[1]);
+    if (other_area > area && Intersection(detection, other) >= kInside * area) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 SemanticMapper::SemanticMapper(const mapping::MapImage& occupancy, std::vector<std::string> classes,
@@ -42,7 +62,7 @@ void SemanticMapper::AddFrame(const FrameDetections& frame, const Pose2& pose,
   const int frame_index = static_cast<int>(frames_.size());
   for (const Detection& detection : frame.detections) {
     const int c = ClassIndex(detection.class_name);
-    if (c < 0) continue;
+    if (c < 0 || IsNestedDuplicate(detection, frame.detections)) continue;
     const std::vector<Eigen::Vector3d> points =
         DetectionWorldPoints(detection, depth_m, camera_, pose,
                              options_.PriorOf(detection.class_name).Extent(), options_.points);

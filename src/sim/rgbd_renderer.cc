@@ -19,6 +19,7 @@ constexpr std::int64_t kDepthNoiseStream = 0x64657074;
 struct Look {
   SurfaceTexture texture;
   std::array<std::uint8_t, 3> color;
+  bool plain = false;  // flat colour, no texture
 };
 
 // The looks of a wall polyline's segments; segment i starts at texture coordinate starts[i].
@@ -71,14 +72,14 @@ FrameRenderer::FrameRenderer(const Scene& scene, const MountedCamera& camera,
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
     const Solid& solid = world.objects[i];
     const SurfaceRef ref{SurfaceRef::Kind::kObject, static_cast<int>(i)};
-    objects_.push_back(
-        {SurfaceTexture(SolidTextureSeed(world.seed, solid, ref), solid.color), solid.color});
+    objects_.push_back({SurfaceTexture(SolidTextureSeed(world.seed, solid, ref), solid.color),
+                        solid.color, solid.plain});
   }
   for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
     const Solid& solid = world.obstacles[i];
     const SurfaceRef ref{SurfaceRef::Kind::kObstacle, static_cast<int>(i)};
-    obstacles_.push_back(
-        {SurfaceTexture(SolidTextureSeed(world.seed, solid, ref), solid.color), solid.color});
+    obstacles_.push_back({SurfaceTexture(SolidTextureSeed(world.seed, solid, ref), solid.color),
+                          solid.color, solid.plain});
   }
 }
 
@@ -112,7 +113,7 @@ Rgb FrameRenderer::Shade(const Eigen::Vector3d& ray, const Contact& contact, dou
   const Look& look = LookOf(hit);
   Rgb color{static_cast<float>(look.color[0]), static_cast<float>(look.color[1]),
             static_cast<float>(look.color[2])};
-  if (options_.textured) {
+  if (options_.textured && !look.plain) {
     // One pixel covers t / fx metres across the ray, more on a face seen at an angle.
     const double footprint = t / camera_.intrinsics.fx / std::max(facing, 0.25);
     color = look.texture.Sample(u, v, footprint);

@@ -33,6 +33,9 @@ struct Solid {
   double base_height = 0.0;        // metres above the floor where it starts (e.g. a table top)
   std::uint32_t texture_seed = 0;  // derived from the world seed and index when not given
   std::array<std::uint8_t, 3> color = {200, 200, 200};  // base colour (RGB) of its texture
+  // Rendered in its flat colour without a texture pattern (e.g. the coloured test boxes a
+  // detector test model recognises).
+  bool plain = false;
 };
 
 // A box solid of 'class_name' (empty for an obstacle) centred at (x, y), axis-aligned:

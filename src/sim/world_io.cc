@@ -70,7 +70,8 @@ Status ParseColor(const Node& node, std::array<std::uint8_t, 3>* color) {
 Status ParseSolid(const Node& node, const std::vector<std::string>& classes, Solid* solid) {
   const bool semantic = !classes.empty();
   std::vector<std::string> keys = {"x",      "y",      "yaw",   "width",       "depth",
-                                   "radius", "height", "color", "base_height", "texture_seed"};
+                                   "radius", "height", "color", "base_height", "texture_seed",
+                                   "plain"};
   if (semantic) keys.push_back("class");
   SEMCHAIN_RETURN_IF_ERROR(node.CheckKeys(keys));
   if (semantic) {
@@ -92,6 +93,13 @@ Status ParseSolid(const Node& node, const std::vector<std::string>& classes, Sol
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "height", &solid->height, true));
   SEMCHAIN_RETURN_IF_ERROR(ReadNonNegative(node, "base_height", &solid->base_height));
   SEMCHAIN_RETURN_IF_ERROR(ParseColor(node, &solid->color));
+  if (node.Has("plain")) {
+    const Result<Node> plain = node.Get("plain");
+    if (!plain.ok()) return plain.status();
+    const Result<bool> value = plain->AsBool();
+    if (!value.ok()) return value.status();
+    solid->plain = *value;
+  }
   if (node.Has("texture_seed")) {
     int seed = 0;
     SEMCHAIN_RETURN_IF_ERROR(ReadNonNegativeInt(node, "texture_seed", &seed));

@@ -16,7 +16,7 @@
 //   name (default: the file's stem), seed (textures), classes (class-id order),
 //   walls (required: polylines of ≥ 2 [x, y] points), wall_height, wall_thickness,
 //   objects / obstacles: lists of {class (objects only), x, y, yaw, radius | width + depth,
-//     height, base_height, color: [r, g, b], texture_seed},
+//     height, base_height, color: [r, g, b], texture_seed, plain (flat colour: true/false)},
 //   robot (required): {start: [x, y, theta] (required), radius, odometry_noise: [α1..α4],
 //     max_speed, max_turn_rate, scan_rate_hz, frame_rate_hz (≤ scan_rate_hz),
 //     lidar: {height, beams, fov_deg, max_range, noise_std, forward_offset},
