@@ -278,10 +278,12 @@ void AddBenchSlam(CLI::App& bench, int& exit_code) {
 }  // namespace
 
 void AddBenchCommand(CLI::App& app, int& exit_code) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks (slam; reloc to come)");
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Benchmarks: slam, localize (real logs), reloc (simulated relocalization trials)");
   bench->require_subcommand(1);
   AddBenchSlam(*bench, exit_code);
   AddBenchLocalize(*bench, exit_code);
+  AddBenchReloc(*bench, exit_code);
 }
 
 }  // namespace semchain::app

@@ -12,12 +12,15 @@ void AddSimulateCommand(CLI::App& app, int& exit_code);
 void AddRenderCommand(CLI::App& app, int& exit_code);
 void AddSlamCommand(CLI::App& app, int& exit_code);
 void AddSemanticCommand(CLI::App& app, int& exit_code);
+void AddLocalizeCommand(CLI::App& app, int& exit_code);
 void AddEvalCommand(CLI::App& app, int& exit_code);
 void AddDetectCommand(CLI::App& app, int& exit_code);
 void AddBenchCommand(CLI::App& app, int& exit_code);
 void AddPlanCommand(CLI::App& app, int& exit_code);
 // `bench localize` (bench_localize_command.cc), registered by AddBenchCommand.
 void AddBenchLocalize(CLI::App& bench, int& exit_code);
+// `bench reloc` (bench_reloc_command.cc), registered by AddBenchCommand.
+void AddBenchReloc(CLI::App& bench, int& exit_code);
 
 // Prints "semchain: error: <message>" on one line to stderr and returns the exit code 1.
 int ReportError(const Status& status);

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   semchain::app::AddRenderCommand(app, exit_code);
   semchain::app::AddSlamCommand(app, exit_code);
   semchain::app::AddSemanticCommand(app, exit_code);
+  semchain::app::AddLocalizeCommand(app, exit_code);
   semchain::app::AddEvalCommand(app, exit_code);
   semchain::app::AddDetectCommand(app, exit_code);
   semchain::app::AddBenchCommand(app, exit_code);

@@ -1,0 +1,145 @@
+// semchain localize --map MAP --run RUN --method METHOD [--out R.json] [--seed S]
+// Runs one relocalization method (DESIGN.md §4) over a recorded run (its scans, odometry and
+// camera detections) on a map with its semantic map; prints (and writes) the result as JSON,
+// scored against RUN/truth.txt when the run has one.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "apps/command.h"
+#include "core/angles.h"
+#include "core/atomic_file.h"
+#include "eval/reloc_methods.h"
+#include "io/camera_io.h"
+#include "io/carmen.h"
+#include "io/detections_io.h"
+#include "io/trajectory_io.h"
+#include "mapping/map_io.h"
+#include "mapping/slam_pipeline.h"
+#include "semantic/semantic_map_io.h"
+
+namespace semchain::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LocalizeArgs {
+  std::string map;
+  std::string run;
+  std::string method;
+  std::string out;
+  int seed = 1;
+};
+
+// Objects outside the map's extent mean the two files were made for different maps.
+Status CheckSemanticFitsMap(const semantic::SemanticMap& semantic, const mapping::MapImage& map,
+                            const fs::path& semantic_path, const fs::path& map_path) {
+  const Eigen::Vector2d low = map.origin.head<2>();
+  const Eigen::Vector2d high = low + map.resolution * Eigen::Vector2d(map.width, map.height);
+  for (const semantic::SemanticObject& object : semantic.objects) {
+    const Eigen::Vector2d& c = object.center;
+    if ((c.array() < low.array()).any() || (c.array() > high.array()).any()) {
+      char text[200];
+      std::snprintf(text, sizeof(text), "object %d (%s) at (%.2f, %.2f) lies outside ", object.id,
+                    object.class_name.c_str(), c.x(), c.y());
+      return Status::Error(semantic_path.string() + ": " + text + map_path.string() +
+                           ": map and semantic map do not belong together");
+    }
+  }
+  return Status::Ok();
+}
+
+Status RunLocalize(const LocalizeArgs& args) {
+  if (!eval::IsRelocMethod(args.method)) {
+    return Status::Error("--method: unknown method '" + args.method +
+                         "' (amcl, semantic-amcl, semantic-scanmatch, scanmatch-global)");
+  }
+  const fs::path map_dir(args.map);
+  const fs::path run(args.run);
+  Result<mapping::MapImage> map = mapping::ReadMap(map_dir / "map.yaml");
+  if (!map.ok()) return map.status();
+  Result<semantic::SemanticMap> semantic = semantic::ReadSemanticJson(map_dir / "semantic.json");
+  if (!semantic.ok()) return semantic.status();
+  SEMCHAIN_RETURN_IF_ERROR(
+      CheckSemanticFitsMap(*semantic, *map, map_dir / "semantic.json", map_dir / "map.yaml"));
+
+  Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
+  if (!log.ok()) return log.status();
+  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
+  if (!scans.ok()) return scans.status();
+  eval::RelocRunInputs inputs;
+  inputs.scans = std::move(*scans);
+  inputs.seed = static_cast<std::uint64_t>(args.seed);
+  const bool semantic_method = args.method.rfind("semantic", 0) == 0;
+  if (semantic_method) {
+    Result<CameraInfo> camera = ReadCameraYaml(run / "camera.yaml");
+    if (!camera.ok()) return camera.status();
+    inputs.camera = camera->camera;
+    Result<std::vector<FrameDetections>> frames = ReadDetectionsJsonl(run / "detections.jsonl");
+    if (!frames.ok()) return frames.status();
+    std::size_t detections = 0;
+    for (const FrameDetections& frame : *frames) {
+      detections += frame.detections.size();
+      inputs.frames.push_back({frame.stamp, frame.detections});
+    }
+    if (detections == 0) {
+      return Status::Error((run / "detections.jsonl").string() + ": no detections at all: " +
+                           args.method + " needs objects in view (use amcl or scanmatch-global)");
+    }
+  }
+  const eval::RelocMap reloc_map(*map, *semantic, localization::AmclOptions(),
+                                 semantic::PreLocalizationOptions(),
+                                 localization::ScanMatchRelocalizerOptions());
+  const eval::RelocTrace trace = eval::RunRelocMethod(args.method, reloc_map, inputs);
+
+  nlohmann::json result = {{"method", args.method},
+                           {"scans", inputs.scans.size()},
+                           {"cpu_ms", 1000.0 * trace.cpu_seconds.back()},
+                           {"iterations", trace.iterations.back()},
+                           {"prelocalizations", trace.prelocalizations}};
+  const auto& last = trace.estimates.back();
+  result["localized"] = last.has_value();
+  if (last) result["pose"] = {last->x, last->y, last->theta};
+  if (trace.prelocalization) {
+    result["prelocalization"] = {trace.prelocalization->x, trace.prelocalization->y,
+                                 trace.prelocalization->theta};
+  }
+  if (fs::exists(run / "truth.txt")) {
+    Result<std::vector<StampedPose>> truth = ReadTrajectory(run / "truth.txt");
+    if (!truth.ok()) return truth.status();
+    if (last && !truth->empty()) {
+      const Pose2& t = truth->back().pose;
+      result["error_m"] = (last->translation() - t.translation()).norm();
+      result["error_deg"] = std::abs(NormalizeAngle(last->theta - t.theta)) * 180.0 / M_PI;
+    }
+  }
+  const std::string text = result.dump(2) + "\n";
+  if (!args.out.empty()) SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(args.out, text));
+  std::printf("%s", text.c_str());
+  return Status::Ok();
+}
+
+}  // namespace
+
+void AddLocalizeCommand(CLI::App& app, int& exit_code) {
+  CLI::App* command = app.add_subcommand(
+      "localize",
+      "Relocalize a recorded run on a map: amcl, semantic-amcl, semantic-scanmatch or "
+      "scanmatch-global; prints the pose (and its error against RUN/truth.txt) as JSON");
+  auto args = std::make_shared<LocalizeArgs>();
+  command->add_option("--map", args->map, "Map directory (map.yaml, semantic.json)")->required();
+  command->add_option("--run", args->run, "Run directory (log.clf, detections.jsonl, camera.yaml)")
+      ->required();
+  command->add_option("--method", args->method, "Relocalization method")->required();
+  command->add_option("--out", args->out, "Also write the JSON here");
+  command->add_option("--seed", args->seed, "Seed of the filters")->capture_default_str();
+  command->callback([args, &exit_code] {
+    const Status status = RunLocalize(*args);
+    exit_code = status.ok() ? 0 : ReportError(status);
+  });
+}
+
+}  // namespace semchain::app

@@ -1,0 +1,412 @@
+#include "eval/reloc_benchmark.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "core/angles.h"
+#include "core/rng.h"
+#include "eval/ate.h"
+#include "eval/reloc_methods.h"
+#include "io/camera_io.h"
+#include "io/carmen.h"
+#include "io/detections_io.h"
+#include "io/trajectory_io.h"
+#include "mapping/slam_pipeline.h"
+#include "semantic/semantic_run.h"
+#include "sim/scene.h"
+#include "sim/simulator.h"
+#include "sim/world_io.h"
+
+namespace semchain::eval {
+namespace fs = std::filesystem;
+namespace {
+
+// Random streams of the benchmark (MakeRng(seed, stream)).
+constexpr std::uint64_t kTrialPoseStream = 31;
+constexpr std::uint64_t kTrialRunSeedOffset = 1000;
+// AMCL alphas = margin × the simulated odometry's, at least the minimum.
+constexpr double kAlphaMargin = 2.0;
+constexpr double kMinAlpha = 0.005;
+
+struct BuiltMap {
+  mapping::MapImage occupancy;
+  semantic::SemanticMap semantic;
+  double ate = 0.0;
+};
+
+Result<BuiltMap> BuildMap(const sim::World& world, std::uint64_t seed, const fs::path& run) {
+  sim::SimulationOptions simulation;
+  simulation.seed = seed;
+  simulation.show_progress = false;
+  SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(world, simulation, run));
+  Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
+  if (!log.ok()) return log.status();
+  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
+  if (!scans.ok()) return scans.status();
+  mapping::SlamOptions slam_options;
+  slam_options.rbpf.seed = seed;
+  const mapping::SlamResult slam = mapping::RunSlam(*scans, slam_options);
+
+  BuiltMap built;
+  built.occupancy = mapping::GridToMapImage(slam.map);
+  Result<std::vector<StampedPose>> truth = ReadTrajectory(run / "truth.txt");
+  if (!truth.ok()) return truth.status();
+  Result<AteResult> ate = EvaluateAte(slam.trajectory, *truth);
+  if (ate.ok()) built.ate = ate->ate_rmse_m;
+  semantic::SemanticRunInputs inputs;
+  inputs.run_dir = run;
+  inputs.occupancy = built.occupancy;
+  inputs.trajectory = slam.trajectory;
+  Result<semantic::SemanticMappingResult> mapped =
+      semantic::MapRun(inputs, semantic::SemanticMapOptions());
+  if (!mapped.ok()) return mapped.status();
+  built.semantic = mapped->map;
+  return built;
+}
+
+// The trial region must lie inside the walls' extent (the map can cover nothing else).
+Status CheckTrialRegionInWorld(const sim::World& world, const std::string& source) {
+  if (world.trial_region.size() < 3) {
+    return Status::Error(source + ": trial_region: the live world needs a trial region");
+  }
+  Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
+  for (const auto& wall : world.walls) {
+    for (const Eigen::Vector2d& p : wall) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  }
+  for (const Eigen::Vector2d& p : world.trial_region) {
+    if ((p.array() < low.array()).any() || (p.array() > high.array()).any()) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    ": trial_region: point (%.2f, %.2f) lies outside the map (walls span "
+                    "(%.2f, %.2f) to (%.2f, %.2f))",
+                    p.x(), p.y(), low.x(), low.y(), high.x(), high.y());
+      return Status::Error(source + text);
+    }
+  }
+  return Status::Ok();
+}
+
+// Uniform poses in the trial region, in free space at least 'clearance' from every surface.
+Result<std::vector<Pose2>> TrialPoses(const sim::World& world, int count, double clearance,
+                                      std::uint64_t seed, const std::string& source) {
+  if (world.trial_region.size() < 3) {
+    return Status::Error(source + ": trial_region: the live world needs a trial region");
+  }
+  const sim::Scene scene(world);
+  Eigen::Vector2d low = world.trial_region.front();
+  Eigen::Vector2d high = low;
+  for (const Eigen::Vector2d& p : world.trial_region) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  Rng rng = MakeRng(seed, kTrialPoseStream);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Pose2> poses;
+  constexpr int kTriesPerPose = 10000;
+  for (int tries = 0; static_cast<int>(poses.size()) < count; ++tries) {
+    if (tries > kTriesPerPose * count) {
+      return Status::Error(source + ": trial_region: no free pose " + std::to_string(clearance) +
+                           " m from every surface found in it");
+    }
+    const Eigen::Vector2d p =
+        low + (high - low).cwiseProduct(Eigen::Vector2d(unit(rng), unit(rng)));
+    if (!sim::PolygonContains(world.trial_region, p) || scene.IsOccupied(p, clearance)) continue;
+    poses.emplace_back(p.x(), p.y(), NormalizeAngle(2.0 * M_PI * unit(rng)));
+  }
+  return poses;
+}
+
+struct TrialData {
+  RelocRunInputs inputs;
+  std::vector<StampedPose> truth;  // one per scan
+};
+
+Result<TrialData> SimulateTrial(const sim::World& world, const Pose2& start, std::uint64_t seed,
+                                const RelocBenchmarkOptions& options, const fs::path& run) {
+  sim::SimulationOptions simulation;
+  simulation.seed = seed;
+  simulation.start = start;
+  simulation.show_progress = false;
+  simulation.route.kind = sim::RouteSpec::Kind::kTrial;
+  simulation.trial.rotation_radians = 2.0 * M_PI * options.trial_turns;
+  simulation.trial.forward_distance_meters = options.trial_forward;
+  SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(world, simulation, run));
+  TrialData data;
+  Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
+  if (!log.ok()) return log.status();
+  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
+  if (!scans.ok()) return scans.status();
+  data.inputs.scans = std::move(*scans);
+  Result<std::vector<FrameDetections>> frames = ReadDetectionsJsonl(run / "detections.jsonl");
+  if (!frames.ok()) return frames.status();
+  for (const FrameDetections& frame : *frames) {
+    data.inputs.frames.push_back({frame.stamp, frame.detections});
+  }
+  Result<CameraInfo> camera = ReadCameraYaml(run / "camera.yaml");
+  if (!camera.ok()) return camera.status();
+  data.inputs.camera = camera->camera;
+  data.inputs.seed = seed;
+  Result<std::vector<StampedPose>> truth = ReadTrajectory(run / "truth.txt");
+  if (!truth.ok()) return truth.status();
+  data.truth = std::move(*truth);
+  if (data.truth.size() != data.inputs.scans.size()) {
+    return Status::Error(run.string() + ": truth.txt and log.clf disagree on the scan count");
+  }
+  return data;
+}
+
+struct TrialOutcome {
+  bool success = false;
+  bool localized = false;
+  double final_error_m = 0.0;
+  double final_error_rad = 0.0;
+  double time = 0.0;
+  double cpu = 0.0;
+  int iterations = 0;
+  double error_m = 0.0;
+  double error_rad = 0.0;
+  bool prelocalized = false;
+  Eigen::Vector2d prelocalization_error = Eigen::Vector2d::Zero();
+};
+
+TrialOutcome Score(const RelocTrace& trace, const TrialData& trial,
+                   const RelocBenchmarkOptions& options) {
+  TrialOutcome outcome;
+  const std::size_t n = trace.estimates.size();
+  const auto within = [&](std::size_t i) {
+    if (!trace.estimates[i]) return false;
+    const Pose2& e = *trace.estimates[i];
+    const Pose2& t = trial.truth[i].pose;
+    return (e.translation() - t.translation()).norm() <= options.success_distance &&
+           std::abs(NormalizeAngle(e.theta - t.theta)) <= options.success_heading;
+  };
+  // The first scan from which the estimate stays within the tolerance to the end.
+  std::size_t first = n;
+  for (std::size_t i = n; i-- > 0;) {
+    if (!within(i)) break;
+    first = i;
+  }
+  if (trace.prelocalization && trace.prelocalization_scan >= 0) {
+    outcome.prelocalized = true;
+    const Pose2& t = trial.truth[static_cast<std::size_t>(trace.prelocalization_scan)].pose;
+    outcome.prelocalization_error =
+        (trace.prelocalization->translation() - t.translation()).cwiseAbs();
+  }
+  if (n > 0 && trace.estimates.back()) {
+    outcome.localized = true;
+    const Pose2& e = *trace.estimates.back();
+    const Pose2& t = trial.truth.back().pose;
+    outcome.final_error_m = (e.translation() - t.translation()).norm();
+    outcome.final_error_rad = std::abs(NormalizeAngle(e.theta - t.theta));
+  }
+  if (first == n) return outcome;
+  outcome.time = trial.truth[first].timestamp - trial.truth.front().timestamp;
+  if (outcome.time > options.time_limit) return outcome;
+  outcome.success = true;
+  outcome.cpu = trace.cpu_seconds[first];
+  outcome.iterations = trace.iterations[first];
+  const Pose2& e = *trace.estimates.back();
+  const Pose2& t = trial.truth.back().pose;
+  outcome.error_m = (e.translation() - t.translation()).norm();
+  outcome.error_rad = std::abs(NormalizeAngle(e.theta - t.theta));
+  return outcome;
+}
+
+void Accumulate(const TrialOutcome& outcome, RelocMethodStats* stats) {
+  ++stats->trials;
+  if (outcome.prelocalized) {
+    ++stats->prelocalized;
+    stats->prelocalization_error_x_m += outcome.prelocalization_error.x();
+    stats->prelocalization_error_y_m += outcome.prelocalization_error.y();
+  }
+  if (!outcome.success) return;
+  ++stats->successes;
+  stats->mean_time_s += outcome.time;
+  stats->mean_cpu_ms += 1000.0 * outcome.cpu;
+  stats->mean_iterations += outcome.iterations;
+  stats->mean_error_m += outcome.error_m;
+  stats->mean_error_deg += outcome.error_rad * 180.0 / M_PI;
+}
+
+void Finish(RelocMethodStats* stats) {
+  stats->success_rate = stats->trials > 0 ? double(stats->successes) / stats->trials : 0.0;
+  if (stats->successes > 0) {
+    const double n = stats->successes;
+    stats->mean_time_s /= n;
+    stats->mean_cpu_ms /= n;
+    stats->mean_iterations /= n;
+    stats->mean_error_m /= n;
+    stats->mean_error_deg /= n;
+  }
+  if (stats->prelocalized > 0) {
+    stats->prelocalization_error_x_m /= stats->prelocalized;
+    stats->prelocalization_error_y_m /= stats->prelocalized;
+  }
+}
+
+}  // namespace
+
+Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
+                                               const fs::path& live_world_path,
+                                               const RelocBenchmarkOptions& options,
+                                               const std::function<void(int, int)>& progress) {
+  if (options.trials < 1) return Status::Error("--trials must be at least 1");
+  for (const std::string& method : options.methods) {
+    if (!IsRelocMethod(method)) {
+      return Status::Error("--methods: unknown method '" + method +
+                           "' (amcl, semantic-amcl, semantic-scanmatch, scanmatch-global)");
+    }
+  }
+  Result<sim::World> world = sim::LoadWorld(world_path);
+  if (!world.ok()) return world.status();
+  SEMCHAIN_RETURN_IF_ERROR(sim::ValidateWorld(*world, world_path.string()));
+  Result<sim::World> live = sim::LoadWorld(live_world_path);
+  if (!live.ok()) return live.status();
+  SEMCHAIN_RETURN_IF_ERROR(sim::ValidateWorld(*live, live_world_path.string()));
+  SEMCHAIN_RETURN_IF_ERROR(CheckTrialRegionInWorld(*live, live_world_path.string()));
+  Result<std::vector<Pose2>> starts = TrialPoses(*live, options.trials, options.start_clearance,
+                                                 options.seed, live_world_path.string());
+  if (!starts.ok()) return starts.status();
+
+  const fs::path work =
+      options.work_dir.empty()
+          ? fs::temp_directory_path() / ("semchain_bench_reloc_" + std::to_string(::getpid()))
+          : options.work_dir;
+  std::error_code ignored;
+  fs::remove_all(work, ignored);
+  fs::create_directories(work, ignored);
+  struct Cleanup {
+    fs::path path;
+    ~Cleanup() {
+      std::error_code error;
+      fs::remove_all(path, error);
+    }
+  } cleanup{work};
+
+  Result<BuiltMap> built = BuildMap(*world, options.seed, work / "mapping");
+  if (!built.ok()) return built.status();
+  if (built->semantic.objects.empty()) {
+    return Status::Error(world_path.string() + ": the mapping run found no objects");
+  }
+  // AMCL's odometry noise is a property of the robot: as a user tunes it for theirs, it is set
+  // from the simulated robot's odometry model (the same for every method), with a margin.
+  localization::AmclOptions amcl;
+  const std::array<double, 4>& noise = live->robot.odometry_noise;
+  amcl.alpha1 = std::max(kMinAlpha, kAlphaMargin * noise[0]);
+  amcl.alpha2 = std::max(kMinAlpha, kAlphaMargin * noise[1]);
+  amcl.alpha3 = std::max(kMinAlpha, kAlphaMargin * noise[2]);
+  amcl.alpha4 = std::max(kMinAlpha, kAlphaMargin * noise[3]);
+  const RelocMap map(built->occupancy, built->semantic, amcl, semantic::PreLocalizationOptions(),
+                     localization::ScanMatchRelocalizerOptions());
+
+  RelocBenchmarkResult result;
+  result.world = world_path.string();
+  result.live_world = live_world_path.string();
+  result.trials = options.trials;
+  result.seed = options.seed;
+  result.map_objects = static_cast<int>(built->semantic.objects.size());
+  result.map_ate_m = built->ate;
+  for (int k = 0; k < options.trials; ++k) {
+    const fs::path run = work / ("trial_" + std::to_string(k));
+    Result<TrialData> trial = SimulateTrial(*live, (*starts)[static_cast<std::size_t>(k)],
+                                            options.seed + kTrialRunSeedOffset + k, options, run);
+    if (!trial.ok()) return trial.status();
+    for (const std::string& method : options.methods) {
+      const RelocTrace trace = RunRelocMethod(method, map, trial->inputs);
+      const TrialOutcome outcome = Score(trace, *trial, options);
+      Accumulate(outcome, &result.methods[method]);
+      const Pose2& start = (*starts)[static_cast<std::size_t>(k)];
+      RelocTrialRecord record;
+      record.trial = k;
+      record.start[0] = start.x;
+      record.start[1] = start.y;
+      record.start[2] = start.theta;
+      record.success = outcome.success;
+      record.time_s = outcome.time;
+      record.localized = outcome.localized;
+      record.error_m = outcome.final_error_m;
+      record.error_deg = outcome.final_error_rad * 180.0 / M_PI;
+      record.prelocalizations = trace.prelocalizations;
+      result.runs[method].push_back(record);
+    }
+    fs::remove_all(run, ignored);
+    if (progress) progress(k + 1, options.trials);
+  }
+  for (auto& [name, stats] : result.methods) Finish(&stats);
+  return result;
+}
+
+std::string RelocResultsJson(const RelocBenchmarkResult& result) {
+  nlohmann::json methods = nlohmann::json::object();
+  for (const auto& [name, s] : result.methods) {
+    methods[name] = {{"trials", s.trials},
+                     {"successes", s.successes},
+                     {"success_rate", s.success_rate},
+                     {"mean_time_s", s.mean_time_s},
+                     {"mean_cpu_ms", s.mean_cpu_ms},
+                     {"mean_iterations", s.mean_iterations},
+                     {"mean_error_m", s.mean_error_m},
+                     {"mean_error_deg", s.mean_error_deg},
+                     {"prelocalized", s.prelocalized},
+                     {"prelocalization_error_x_m", s.prelocalization_error_x_m},
+                     {"prelocalization_error_y_m", s.prelocalization_error_y_m}};
+  }
+  nlohmann::json runs = nlohmann::json::object();
+  for (const auto& [name, records] : result.runs) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const RelocTrialRecord& r : records) {
+      list.push_back({{"trial", r.trial},
+                      {"start", {r.start[0], r.start[1], r.start[2]}},
+                      {"success", r.success},
+                      {"time_s", r.time_s},
+                      {"localized", r.localized},
+                      {"error_m", r.error_m},
+                      {"error_deg", r.error_deg},
+                      {"prelocalizations", r.prelocalizations}});
+    }
+    runs[name] = list;
+  }
+  const nlohmann::json root = {{"world", result.world},
+                               {"live_world", result.live_world},
+                               {"trials", result.trials},
+                               {"seed", result.seed},
+                               {"map_objects", result.map_objects},
+                               {"map_ate_m", result.map_ate_m},
+                               {"methods", methods},
+                               {"runs", runs}};
+  return root.dump(2) + "\n";
+}
+
+std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
+  std::string text = "# bench reloc\n\nworld `" + result.world + "`, live world `" +
+                     result.live_world + "`, " + std::to_string(result.trials) + " trials, seed " +
+                     std::to_string(result.seed) + "; map from SLAM (ATE " +
+                     std::to_string(result.map_ate_m) + " m), " +
+                     std::to_string(result.map_objects) + " objects\n\n";
+  text +=
+      "| method | success | mean time (s) | mean CPU (ms) | iterations | error (m) | error (deg) "
+      "| pre-localization error x / y (m) |\n|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [name, s] : result.methods) {
+    char line[400];
+    std::snprintf(
+        line, sizeof(line), "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %.1f | %.3f | %.2f | %s |\n",
+        name.c_str(), s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s, s.mean_cpu_ms,
+        s.mean_iterations, s.mean_error_m, s.mean_error_deg,
+        s.prelocalized > 0 ? (std::to_string(s.prelocalization_error_x_m).substr(0, 5) + " / " +
+                              std::to_string(s.prelocalization_error_y_m).substr(0, 5))
+                                 .c_str()
+                           : "–");
+    text += line;
+  }
+  return text;
+}
+
+}  // namespace semchain::eval

@@ -1,0 +1,84 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+
+// `semchain bench reloc` (DESIGN.md §4, seed 000 Tables 4–5, seed 001 Fig. 13/19): the map of a
+// world is built from a simulated mapping run (SLAM and semantic mapping, not the truth); the
+// robot is then put at random poses in the trial region of the live world (the same world, or
+// a changed one), turns in place and moves off, and every method localizes from the same
+// recordings. A trial succeeds when the estimate comes within 0.25 m and 10° of the truth and
+// stays there to the end of the trial, within 30 s of simulated time.
+namespace semchain::eval {
+
+struct RelocBenchmarkOptions {
+  int trials = 35;
+  std::uint64_t seed = 1;
+  std::vector<std::string> methods = {"amcl", "semantic-amcl", "semantic-scanmatch",
+                                      "scanmatch-global"};
+  double success_distance = 0.25;   // metres
+  double success_heading = 0.1745;  // radians (10°)
+  double time_limit = 30.0;         // seconds of simulated time
+  // Trial starts keep this far (metres) from any wall or object.
+  double start_clearance = 0.25;
+  // The trial behaviour: turns in place, then a drive of at most this far.
+  double trial_turns = 2.0;
+  double trial_forward = 1.0;
+  // Where the runs are made (removed afterwards); a temporary directory when empty.
+  std::filesystem::path work_dir;
+};
+
+struct RelocMethodStats {
+  int trials = 0;
+  int successes = 0;
+  double success_rate = 0.0;
+  // Over successful trials.
+  double mean_time_s = 0.0;      // simulated time from the start to convergence
+  double mean_cpu_ms = 0.0;      // CPU time the method spent until convergence
+  double mean_iterations = 0.0;  // filter updates / matcher runs until convergence
+  double mean_error_m = 0.0;     // at the end of the trial
+  double mean_error_deg = 0.0;
+  // Semantic methods: error of the first pre-localization (best hypothesis), mean |x| and |y|.
+  int prelocalized = 0;
+  double prelocalization_error_x_m = 0.0;
+  double prelocalization_error_y_m = 0.0;
+};
+
+// One method on one trial.
+struct RelocTrialRecord {
+  int trial = 0;
+  double start[3] = {0.0, 0.0, 0.0};  // x, y, θ
+  bool success = false;
+  double time_s = 0.0;     // when successful
+  bool localized = false;  // an estimate at the end
+  double error_m = 0.0;    // at the end (when localized)
+  double error_deg = 0.0;
+  int prelocalizations = 0;
+};
+
+struct RelocBenchmarkResult {
+  std::string world;
+  std::string live_world;
+  int trials = 0;
+  std::uint64_t seed = 0;
+  int map_objects = 0;
+  double map_ate_m = 0.0;  // SLAM trajectory of the mapping run against its truth
+  std::map<std::string, RelocMethodStats> methods;
+  std::map<std::string, std::vector<RelocTrialRecord>> runs;
+};
+
+// 'progress' (may be empty) is called with (trials done, trials).
+Result<RelocBenchmarkResult> RunRelocBenchmark(const std::filesystem::path& world,
+                                               const std::filesystem::path& live_world,
+                                               const RelocBenchmarkOptions& options,
+                                               const std::function<void(int, int)>& progress = {});
+
+std::string RelocResultsJson(const RelocBenchmarkResult& result);
+std::string RelocResultsMarkdown(const RelocBenchmarkResult& result);
+
+}  // namespace semchain::eval

@@ -1,0 +1,210 @@
+#include "eval/reloc_methods.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/angles.h"
+
+namespace semchain::eval {
+namespace {
+
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Mean M of the scan's returns at 'pose': how well the scan fits the map there.
+double LaserFit(const localization::ScanMatchRelocalizer& matcher,
+                const std::vector<Eigen::Vector2d>& points, const Pose2& pose) {
+  if (points.empty()) return 0.0;
+  const mapping::MatchGrid& grid = matcher.grid();
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector2d cell = grid.ToGrid(pose * p);
+    sum += grid.At(static_cast<int>(std::floor(cell.x())), static_cast<int>(std::floor(cell.y())));
+  }
+  return sum / static_cast<double>(points.size());
+}
+
+std::vector<localization::PoseHypothesis> ToHypotheses(
+    const std::vector<semantic::PoseCandidate>& candidates) {
+  std::vector<localization::PoseHypothesis> hypotheses;
+  for (const semantic::PoseCandidate& c : candidates) {
+    // More objects in agreement, more weight; the laser fit separates look-alikes.
+    hypotheses.push_back({c.pose, c.covariance, c.agreeing * (0.1 + c.laser_score)});
+  }
+  return hypotheses;
+}
+
+// Tracking covariance after a scan matcher found the robot.
+const Eigen::Matrix3d kTrackingCovariance =
+    Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal();
+
+class MethodRun {
+ public:
+  MethodRun(const std::string& method, const RelocMap& map, const RelocRunInputs& inputs)
+      : method_(method),
+        map_(map),
+        inputs_(inputs),
+        amcl_(map.localization, map.amcl_options, MakeRng(inputs.seed, 1)) {}
+
+  RelocTrace Run() {
+    RelocTrace trace;
+    std::size_t next_frame = 0;
+    double cpu = 0.0;
+    int iterations = 0;
+    if (method_ == "amcl" || method_ == "semantic-amcl") amcl_.InitializeGlobal();
+    for (const StampedScan& scan : inputs_.scans) {
+      const double start = ThreadCpuSeconds();
+      // The frame taken at this scan, if any.
+      const RelocFrame* frame = nullptr;
+      while (next_frame < inputs_.frames.size() &&
+             inputs_.frames[next_frame].stamp <= scan.scan.timestamp + 1e-6) {
+        frame = &inputs_.frames[next_frame++];
+      }
+      iterations += Step(scan, frame, &trace);
+      if (trace.prelocalization && trace.prelocalization_scan < 0) {
+        trace.prelocalization_scan = static_cast<int>(trace.estimates.size());
+      }
+      cpu += ThreadCpuSeconds() - start;
+      trace.estimates.push_back(estimate_);
+      trace.cpu_seconds.push_back(cpu);
+      trace.iterations.push_back(iterations);
+    }
+    return trace;
+  }
+
+ private:
+  std::vector<semantic::PoseCandidate> PreLocalize(const StampedScan& scan, const RelocFrame& frame,
+                                                   RelocTrace* trace) const {
+    const std::vector<semantic::ObservedObject> observed = semantic::ObserveObjects(
+        frame.detections, inputs_.camera, map_.prelocalizer.options().min_score);
+    if (observed.size() < 2) return {};
+    const std::vector<Eigen::Vector2d> points =
+        map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
+    std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.Localize(
+        observed, [&](const Pose2& pose) { return LaserFit(map_.matcher, points, pose); });
+    ++trace->prelocalizations;
+    if (!candidates.empty() && !trace->prelocalization) {
+      trace->prelocalization = candidates.front().pose;
+    }
+    return candidates;
+  }
+
+  // Processes one scan; returns the filter updates / matcher runs it took.
+  int Step(const StampedScan& scan, const RelocFrame* frame, RelocTrace* trace) {
+    if (method_ == "amcl") return Track(scan);
+    if (method_ == "semantic-amcl") {
+      const bool want = !seeded_ || amcl_.FailureDetected();
+      if (frame && want) {
+        const auto candidates = PreLocalize(scan, *frame, trace);
+        if (!candidates.empty()) {
+          const auto hypotheses = ToHypotheses(candidates);
+          amcl_.InitializeFromHypotheses(hypotheses);
+          amcl_.SetPosePrior(hypotheses);
+          filter_pose_.reset();
+          seeded_ = true;
+          prior_updates_ = 0;
+        }
+      }
+      const int updates = Track(scan);
+      if (amcl_.has_pose_prior() && (prior_updates_ += updates) >= kPriorUpdates) {
+        amcl_.ClearPosePrior();
+      }
+      return updates;
+    }
+    // Scan-matcher methods: relocalize once, then track.
+    if (!tracking_) {
+      localization::RelocalizationResult result;
+      // Without a semantic prior after a full turn (no two objects in view anywhere around),
+      // semantic-scanmatch searches the whole map, as a robot would rather than stay lost.
+      if (start_odometry_) {
+        turned_ += std::abs(NormalizeAngle(scan.odometry.theta - last_heading_));
+      } else {
+        start_odometry_ = scan.odometry;
+      }
+      last_heading_ = scan.odometry.theta;
+      if (method_ == "scanmatch-global" || turned_ >= 2.0 * M_PI) {
+        result = map_.matcher.RelocalizeGlobal(scan.scan, scan.LaserOffset());
+      } else {
+        if (!frame) return 0;
+        const auto candidates = PreLocalize(scan, *frame, trace);
+        if (candidates.empty()) return 0;
+        result = map_.matcher.Relocalize(scan.scan, scan.LaserOffset(), ToHypotheses(candidates));
+      }
+      if (!result.success) return 1;
+      amcl_.InitializePose(result.pose, kTrackingCovariance);
+      tracking_ = true;
+      filter_pose_ = result.pose;
+      filter_odometry_ = scan.odometry;
+      estimate_ = result.pose;
+      return 1;
+    }
+    return Track(scan);
+  }
+
+  // One AMCL step. The filter updates only after the robot moved update_min_d / turned
+  // update_min_a; in between, as nav2 publishes map → odom, the pose is the last filter pose
+  // moved on by odometry.
+  int Track(const StampedScan& scan) {
+    const bool updated = amcl_.ProcessScan(scan.scan, scan.odometry, scan.LaserOffset());
+    if (updated || !filter_pose_) {
+      filter_pose_ = amcl_.Estimate().pose;
+      filter_odometry_ = scan.odometry;
+    }
+    estimate_ = *filter_pose_ * filter_odometry_.Between(scan.odometry);
+    return updated ? 1 : 0;
+  }
+
+  // Updates the prior weights the particles before it is dropped (the prior is a one-off
+  // measurement; kept for ever it would hold the filter on a stale guess).
+  static constexpr int kPriorUpdates = 10;
+
+  const std::string& method_;
+  const RelocMap& map_;
+  const RelocRunInputs& inputs_;
+  localization::Amcl amcl_;
+  std::optional<Pose2> estimate_;
+  std::optional<Pose2> filter_pose_;  // the filter's pose at its last update
+  Pose2 filter_odometry_;             // odometry at that update
+  bool seeded_ = false;
+  std::optional<Pose2> start_odometry_;
+  double last_heading_ = 0.0;
+  double turned_ = 0.0;  // radians turned (odometry) before a scan matcher found the robot
+  bool tracking_ = false;
+  int prior_updates_ = 0;
+};
+
+}  // namespace
+
+const std::vector<std::string>& RelocMethodNames() {
+  static const std::vector<std::string> kNames = {"amcl", "semantic-amcl", "semantic-scanmatch",
+                                                  "scanmatch-global"};
+  return kNames;
+}
+
+bool IsRelocMethod(const std::string& name) {
+  const auto& names = RelocMethodNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+RelocMap::RelocMap(const mapping::MapImage& occupancy_in, const semantic::SemanticMap& semantic_in,
+                   const localization::AmclOptions& amcl,
+                   const semantic::PreLocalizationOptions& prelocalization,
+                   const localization::ScanMatchRelocalizerOptions& scan_match)
+    : occupancy(occupancy_in),
+      semantic(semantic_in),
+      amcl_options(amcl),
+      localization(occupancy_in, amcl.laser_likelihood_max_dist),
+      prelocalizer(semantic_in, occupancy_in, prelocalization),
+      matcher(occupancy_in, scan_match) {}
+
+RelocTrace RunRelocMethod(const std::string& method, const RelocMap& map,
+                          const RelocRunInputs& inputs) {
+  return MethodRun(method, map, inputs).Run();
+}
+
+}  // namespace semchain::eval

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/pose2.h"
+#include "core/rng.h"
+#include "localization/amcl.h"
+#include "localization/localization_map.h"
+#include "localization/scan_match_relocalizer.h"
+#include "mapping/map_io.h"
+#include "semantic/prelocalization.h"
+#include "semantic/semantic_map.h"
+#include "sensors/camera.h"
+#include "sensors/detection.h"
+#include "sensors/laser_scan.h"
+
+// The relocalization methods of DESIGN.md §4, run over what a robot records while it turns in
+// place and moves off: its scans with odometry and its camera's detections.
+//   amcl                AMCL initialised globally (laser only, nav2 defaults)
+//   semantic-amcl       chain pre-localization (seed 000 §3.1) seeds AMCL with Gaussians around
+//                       the hypotheses and weights its particles by the prior (seed 000 §3.2);
+//                       laser-only AMCL until a frame shows two objects, and pre-localization
+//                       again whenever the filter reports a collapse
+//   semantic-scanmatch  the hypotheses bound the window of branch-and-bound + Ceres (seed 001);
+//                       after a full turn without two objects in view, the whole map
+//   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
+// After a scan matcher has found the robot, AMCL tracks it from there.
+namespace semchain::eval {
+
+const std::vector<std::string>& RelocMethodNames();
+bool IsRelocMethod(const std::string& name);
+
+// Everything a method may use about the environment, built once per map.
+struct RelocMap {
+  RelocMap(const mapping::MapImage& occupancy, const semantic::SemanticMap& semantic,
+           const localization::AmclOptions& amcl,
+           const semantic::PreLocalizationOptions& prelocalization,
+           const localization::ScanMatchRelocalizerOptions& scan_match);
+
+  mapping::MapImage occupancy;
+  semantic::SemanticMap semantic;
+  localization::AmclOptions amcl_options;
+  localization::LocalizationMap localization;
+  semantic::PreLocalizer prelocalizer;
+  localization::ScanMatchRelocalizer matcher;
+};
+
+// One camera frame of a run, taken at the time of a scan.
+struct RelocFrame {
+  double stamp = 0.0;
+  std::vector<Detection> detections;
+};
+
+// The pose a method gives after each scan (nothing while it has no estimate), the work it did
+// and the pre-localization it used.
+struct RelocTrace {
+  std::vector<std::optional<Pose2>> estimates;  // one per scan
+  std::vector<double> cpu_seconds;              // cumulative, one per scan
+  std::vector<int> iterations;                  // cumulative filter updates / matcher runs
+  std::optional<Pose2> prelocalization;         // the first best hypothesis, when there was one
+  int prelocalization_scan = -1;                // the scan it was made at
+  int prelocalizations = 0;                     // times pre-localization was run with ≥ 2 objects
+};
+
+struct RelocRunInputs {
+  std::vector<StampedScan> scans;
+  std::vector<RelocFrame> frames;  // in time order
+  MountedCamera camera;
+  std::uint64_t seed = 1;
+};
+
+// Runs 'method' over the scans (frames are used at the scan with the same stamp or the first
+// after it).
+RelocTrace RunRelocMethod(const std::string& method, const RelocMap& map,
+                          const RelocRunInputs& inputs);
+
+}  // namespace semchain::eval

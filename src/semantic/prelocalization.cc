@@ -1,0 +1,321 @@
+#include "semantic/prelocalization.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "core/angles.h"
+#include "core/transforms.h"
+
+namespace semchain::semantic {
+namespace {
+
+// Mapped pairs farther apart than this are never seen together by a camera of a few metres'
+// range; not indexing them keeps the index small on large maps.
+constexpr double kMaxPairDistance = 15.0;
+// Fixed-point iterations of the centre-behind-surface correction.
+constexpr int kRefinements = 4;
+
+Eigen::Vector2d Unit(const Eigen::Vector2d& v) {
+  const double n = v.norm();
+  return n > 1e-12 ? Eigen::Vector2d(v / n) : Eigen::Vector2d(1.0, 0.0);
+}
+
+// The mean distance from the centre to the outline: the centre's depth behind a surface seen
+// from an unknown side.
+double MeanCenterBehindSurface(const SemanticObject& object) {
+  double sum = 0.0;
+  constexpr int kDirections = 8;
+  for (int k = 0; k < kDirections; ++k) {
+    const double a = 2.0 * M_PI * k / kDirections;
+    sum += CenterBehindSurface(object, Eigen::Vector2d(std::cos(a), std::sin(a)));
+  }
+  return sum / kDirections;
+}
+
+double CircularMean(double a, double b) {
+  return std::atan2(std::sin(a) + std::sin(b), std::cos(a) + std::cos(b));
+}
+
+}  // namespace
+
+bool PreLocalizationOptions::Validate(std::string* error) const {
+  if (!(distance_tolerance > 0.0 && distance_tolerance < 1.0)) {
+    *error = "distance_tolerance (alpha) must be in (0, 1)";
+    return false;
+  }
+  if (!(heading_agreement > 0.0) || !(agreement_radius > 0.0) || max_hypotheses < 1 ||
+      !(position_std_base > 0.0) || !(heading_std > 0.0) || clearance < 0.0) {
+    *error = "tolerances, standard deviations and max_hypotheses must be positive";
+    return false;
+  }
+  return true;
+}
+
+std::vector<ObservedObject> ObserveObjects(const std::vector<Detection>& detections,
+                                           const MountedCamera& camera, double min_score) {
+  std::vector<ObservedObject> observed;
+  for (std::size_t i = 0; i < detections.size(); ++i) {
+    const Detection& d = detections[i];
+    if (d.score < min_score || !(d.depth_m > 0.0)) continue;
+    // Box edges are pixel boundaries; pixel u covers [u − 0.5, u + 0.5).
+    const double u = 0.5 * (d.box[0] + d.box[2]) - 0.5;
+    const double v = 0.5 * (d.box[1] + d.box[3]) - 0.5;
+    const Eigen::Vector3d robot =
+        CameraToRobot(camera.robot_from_camera, camera.intrinsics.Backproject(u, v, d.depth_m));
+    ObservedObject object;
+    object.class_name = d.class_name;
+    object.surface = robot.head<2>();
+    object.range = object.surface.norm();
+    object.bearing = std::atan2(object.surface.y(), object.surface.x());
+    object.detection = static_cast<int>(i);
+    observed.push_back(object);
+  }
+  return observed;
+}
+
+int IntersectCircles(const Eigen::Vector2d& c0, double r0, const Eigen::Vector2d& c1, double r1,
+                     double slack, Eigen::Vector2d out[2]) {
+  const Eigen::Vector2d delta = c1 - c0;
+  const double d = delta.norm();
+  if (d < 1e-9) return 0;  // concentric: no point, or a whole circle
+  const Eigen::Vector2d u = delta / d;
+  if (d > r0 + r1) {  // apart
+    if (d - (r0 + r1) > slack) return 0;
+    out[0] = c0 + u * (r0 + 0.5 * (d - r0 - r1));
+    return 1;
+  }
+  if (d < std::abs(r0 - r1)) {  // one inside the other
+    if (std::abs(r0 - r1) - d > slack) return 0;
+    const double sign = r0 >= r1 ? 1.0 : -1.0;
+    out[0] = c0 + sign * u * (r0 - 0.5 * (std::abs(r0 - r1) - d));
+    return 1;
+  }
+  const double a = (r0 * r0 - r1 * r1 + d * d) / (2.0 * d);
+  const double h2 = r0 * r0 - a * a;
+  const Eigen::Vector2d base = c0 + a * u;
+  if (h2 <= 1e-12) {
+    out[0] = base;
+    return 1;
+  }
+  const double h = std::sqrt(h2);
+  const Eigen::Vector2d normal(-u.y(), u.x());
+  out[0] = base + h * normal;
+  out[1] = base - h * normal;
+  return 2;
+}
+
+double CenterBehindSurface(const SemanticObject& object, const Eigen::Vector2d& direction) {
+  const std::vector<Eigen::Vector2d>& polygon = object.footprint;
+  if (polygon.size() < 3) return 0.0;
+  double best = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Eigen::Vector2d a = polygon[k] - object.center;
+    const Eigen::Vector2d e = polygon[(k + 1) % polygon.size()] - polygon[k];
+    // Solve t·direction = a + s·e.
+    const double det = direction.x() * (-e.y()) - direction.y() * (-e.x());
+    if (std::abs(det) < 1e-12) continue;
+    const double t = (a.x() * (-e.y()) - a.y() * (-e.x())) / det;
+    const double s = (direction.x() * a.y() - direction.y() * a.x()) / det;
+    if (t > 0.0 && s >= -1e-9 && s <= 1.0 + 1e-9) best = std::max(best, t);
+  }
+  return best;
+}
+
+PreLocalizer::PreLocalizer(const SemanticMap& map, const mapping::MapImage& occupancy,
+                           const PreLocalizationOptions& options)
+    : objects_(map.objects), occupancy_(occupancy), options_(options) {
+  for (std::size_t a = 0; a < objects_.size(); ++a) {
+    for (std::size_t b = 0; b < objects_.size(); ++b) {
+      if (a == b) continue;
+      const std::string& ca = objects_[a].class_name;
+      const std::string& cb = objects_[b].class_name;
+      // Each unordered pair once, under its classes in name order (a first when equal).
+      if (ca > cb || (ca == cb && a > b)) continue;
+      const double distance = (objects_[a].center - objects_[b].center).norm();
+      if (distance > kMaxPairDistance) continue;
+      pairs_[{ca, cb}].push_back({distance, static_cast<int>(a), static_cast<int>(b)});
+    }
+  }
+  for (auto& [classes, list] : pairs_) {
+    std::sort(list.begin(), list.end(),
+              [](const IndexedPair& x, const IndexedPair& y) { return x.distance < y.distance; });
+  }
+  cv::Mat free(occupancy.height, occupancy.width, CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < occupancy.height; ++y) {
+    for (int x = 0; x < occupancy.width; ++x) {
+      if (occupancy.At(x, y) == 0) free.at<std::uint8_t>(y, x) = 255;
+    }
+  }
+  if (occupancy.width > 0 && occupancy.height > 0) {
+    cv::distanceTransform(free, clearance_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    clearance_ *= occupancy.resolution;
+  }
+}
+
+std::vector<std::tuple<int, int, double>> PreLocalizer::RetrievePairs(const std::string& class_a,
+                                                                      const std::string& class_b,
+                                                                      double d) const {
+  std::vector<std::tuple<int, int, double>> found;
+  const bool swapped = class_a > class_b;
+  const auto it = pairs_.find(swapped ? std::pair{class_b, class_a} : std::pair{class_a, class_b});
+  if (it == pairs_.end()) return found;
+  const double low = d / (1.0 + options_.distance_tolerance);
+  const double high = d / (1.0 - options_.distance_tolerance);
+  const std::vector<IndexedPair>& list = it->second;
+  auto first =
+      std::upper_bound(list.begin(), list.end(), low,
+                       [](double value, const IndexedPair& p) { return value < p.distance; });
+  for (; first != list.end() && first->distance < high; ++first) {
+    const int a = objects_[first->a].id;
+    const int b = objects_[first->b].id;
+    if (swapped) {
+      found.emplace_back(b, a, first->distance);
+    } else {
+      found.emplace_back(a, b, first->distance);
+    }
+    // Same classes: either object may be the first one seen.
+    if (class_a == class_b) found.emplace_back(b, a, first->distance);
+  }
+  return found;
+}
+
+bool PreLocalizer::InFreeSpace(const Eigen::Vector2d& point) const {
+  if (clearance_.empty()) return false;
+  const int x =
+      static_cast<int>(std::floor((point.x() - occupancy_.origin.x()) / occupancy_.resolution));
+  const int y =
+      static_cast<int>(std::floor((point.y() - occupancy_.origin.y()) / occupancy_.resolution));
+  if (x < 0 || y < 0 || x >= occupancy_.width || y >= occupancy_.height) return false;
+  return occupancy_.At(x, y) == 0 && clearance_.at<float>(y, x) >= options_.clearance;
+}
+
+void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j,
+                                     int a, int b, std::vector<PoseCandidate>* out) const {
+  const SemanticObject& oa = objects_[a];
+  const SemanticObject& ob = objects_[b];
+  const ObservedObject& si = observed[i];
+  const ObservedObject& sj = observed[j];
+  // Where the objects' centres are in the robot frame, the camera having seen their surfaces:
+  // behind the surface by the centre's depth in the direction seen (refined below).
+  const auto centre_in_robot = [](const ObservedObject& s, double behind) {
+    return Eigen::Vector2d(s.surface + behind * Unit(s.surface));
+  };
+  Eigen::Vector2d points[2];
+  const int count = IntersectCircles(
+      oa.center, centre_in_robot(si, MeanCenterBehindSurface(oa)).norm(), ob.center,
+      centre_in_robot(sj, MeanCenterBehindSurface(ob)).norm(), options_.circle_slack, points);
+  for (int k = 0; k < count; ++k) {
+    // Refine with the depth behind the surface seen from this position (a fixed point: the
+    // depth depends on the direction, the direction on the position).
+    Eigen::Vector2d x = points[k];
+    Eigen::Vector2d pi, pj;
+    bool lost = false;
+    for (int iteration = 0; iteration < kRefinements && !lost; ++iteration) {
+      pi = centre_in_robot(si, CenterBehindSurface(oa, Unit(x - oa.center)));
+      pj = centre_in_robot(sj, CenterBehindSurface(ob, Unit(x - ob.center)));
+      Eigen::Vector2d refined[2];
+      const int n = IntersectCircles(oa.center, pi.norm(), ob.center, pj.norm(),
+                                     options_.circle_slack, refined);
+      if (n == 0) {
+        lost = true;
+        break;
+      }
+      x = n == 2 && (refined[1] - x).norm() < (refined[0] - x).norm() ? refined[1] : refined[0];
+    }
+    if (lost) continue;
+    // The heading each bearing gives; the mirror solution disagrees.
+    const Eigen::Vector2d to_a = oa.center - x;
+    const Eigen::Vector2d to_b = ob.center - x;
+    const double theta_a = std::atan2(to_a.y(), to_a.x()) - std::atan2(pi.y(), pi.x());
+    const double theta_b = std::atan2(to_b.y(), to_b.x()) - std::atan2(pj.y(), pj.x());
+    if (std::abs(NormalizeAngle(theta_a - theta_b)) > options_.heading_agreement) continue;
+    if (!InFreeSpace(x)) continue;
+    PoseCandidate candidate;
+    candidate.pose = Pose2(x.x(), x.y(), CircularMean(theta_a, theta_b));
+    const double sigma =
+        options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
+    candidate.covariance =
+        Eigen::Vector3d(sigma * sigma, sigma * sigma, options_.heading_std * options_.heading_std)
+            .asDiagonal();
+    out->push_back(candidate);
+  }
+}
+
+int PreLocalizer::CountAgreeing(const std::vector<ObservedObject>& observed,
+                                PoseCandidate* candidate) const {
+  std::set<int> used;
+  candidate->matches.clear();
+  for (std::size_t k = 0; k < observed.size(); ++k) {
+    const ObservedObject& s = observed[k];
+    const Eigen::Vector2d surface = candidate->pose * s.surface;
+    const Eigen::Vector2d ray = Unit(surface - candidate->pose.translation());
+    int best = -1;
+    double best_error = options_.agreement_radius + options_.agreement_per_metre * s.range;
+    for (std::size_t o = 0; o < objects_.size(); ++o) {
+      const SemanticObject& object = objects_[o];
+      if (object.class_name != s.class_name || used.count(static_cast<int>(o))) continue;
+      const Eigen::Vector2d centre = surface + CenterBehindSurface(object, -ray) * ray;
+      const double error = (centre - object.center).norm();
+      if (error < best_error) {
+        best_error = error;
+        best = static_cast<int>(o);
+      }
+    }
+    if (best < 0) continue;
+    used.insert(best);
+    candidate->matches.emplace_back(static_cast<int>(k), objects_[best].id);
+  }
+  return static_cast<int>(candidate->matches.size());
+}
+
+std::vector<PoseCandidate> PreLocalizer::Localize(
+    const std::vector<ObservedObject>& observed,
+    const std::function<double(const Pose2&)>& laser_score) const {
+  std::vector<PoseCandidate> candidates;
+  std::map<int, int> index_of_id;
+  for (std::size_t o = 0; o < objects_.size(); ++o)
+    index_of_id[objects_[o].id] = static_cast<int>(o);
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    for (std::size_t j = i + 1; j < observed.size(); ++j) {
+      const Eigen::Vector2d pi = observed[i].surface;
+      const Eigen::Vector2d pj = observed[j].surface;
+      const double d = (pi - pj).norm();
+      for (const auto& [a, b, distance] :
+           RetrievePairs(observed[i].class_name, observed[j].class_name, d)) {
+        (void)distance;
+        AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), index_of_id[a],
+                          index_of_id[b], &candidates);
+      }
+    }
+  }
+  for (PoseCandidate& candidate : candidates) {
+    candidate.agreeing = CountAgreeing(observed, &candidate);
+    if (laser_score) candidate.laser_score = laser_score(candidate.pose);
+  }
+  if (laser_score) {
+    std::erase_if(candidates, [this](const PoseCandidate& c) {
+      return c.laser_score < options_.min_laser_score;
+    });
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const PoseCandidate& x, const PoseCandidate& y) {
+                     if (x.agreeing != y.agreeing) return x.agreeing > y.agreeing;
+                     return x.laser_score > y.laser_score;
+                   });
+  // One hypothesis per place: the best of those that coincide.
+  std::vector<PoseCandidate> kept;
+  for (const PoseCandidate& candidate : candidates) {
+    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const PoseCandidate& k) {
+      return (k.pose.translation() - candidate.pose.translation()).norm() <
+                 options_.merge_distance &&
+             std::abs(NormalizeAngle(k.pose.theta - candidate.pose.theta)) < options_.merge_heading;
+    });
+    if (!duplicate) kept.push_back(candidate);
+    if (static_cast<int>(kept.size()) >= options_.max_hypotheses) break;
+  }
+  return kept;
+}
+
+}  // namespace semchain::semantic
