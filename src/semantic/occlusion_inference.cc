@@ -131,4 +131,30 @@ OcclusionInference InferOccludedObjects(const SemanticMap& map, const Keyframe& 
   return result;
 }
 
+RankedOcclusionInference InferOccludedObjects(const SemanticMap& map,
+                                              const std::vector<const Keyframe*>& ranked,
+                                              const std::vector<Detection>& detections) {
+  RankedOcclusionInference result;
+  if (ranked.empty()) {
+    result.inference.reason = "no keyframe to compare with";
+    return result;
+  }
+  const std::vector<std::string> classes = CountVectorClasses(map);
+  const std::vector<int> current = CountClasses(detections, classes);
+  result.used = 0;
+  for (std::size_t i = 0; i < ranked.size(); ++i) {
+    const std::vector<int> difference = ClassDifference(CountClasses(*ranked[i], classes), current);
+    const bool covers =
+        std::all_of(difference.begin(), difference.end(), [](int d) { return d >= 0; });
+    const bool more =
+        std::any_of(difference.begin(), difference.end(), [](int d) { return d > 0; });
+    if (covers && more) {
+      result.used = static_cast<int>(i);
+      break;
+    }
+  }
+  result.inference = InferOccludedObjects(map, *ranked[result.used], detections);
+  return result;
+}
+
 }  // namespace semchain::semantic

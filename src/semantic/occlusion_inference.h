@@ -56,4 +56,17 @@ struct OcclusionInference {
 OcclusionInference InferOccludedObjects(const SemanticMap& map, const Keyframe& keyframe,
                                         const std::vector<Detection>& detections);
 
+struct RankedOcclusionInference {
+  int used = -1;  // index into 'ranked' of the keyframe the inference used; -1 when empty
+  OcclusionInference inference;
+};
+
+// Step 4 over the bag-of-words ranking 'ranked' (most similar first): the keyframe used is the
+// first that shows every object class seen now at least as often and some class more often
+// (step 2: a keyframe should cover the hidden object with its up- and downstream neighbours);
+// when none does, the most similar one (whose inference then says why it fails).
+RankedOcclusionInference InferOccludedObjects(const SemanticMap& map,
+                                              const std::vector<const Keyframe*>& ranked,
+                                              const std::vector<Detection>& detections);
+
 }  // namespace semchain::semantic

@@ -123,6 +123,27 @@ TEST(OcclusionInferenceTest, AmbiguousNodesAreReportedNotGuessed) {
       << ambiguous.reason;
 }
 
+TEST(OcclusionInferenceTest, RankedUsesTheFirstKeyframeCoveringTheCurrentClasses) {
+  const SemanticMap map = TwoRooms();
+  Keyframe same;  // the most similar keyframe shows what is seen now and nothing more
+  same.objects = {InView(2, "cabinet"), InView(4, "chair")};
+  Keyframe other;  // the next one lacks the chair seen now
+  other.objects = {InView(2, "cabinet"), InView(3, "bucket")};
+  Keyframe covering;  // the third shows cabinet and chair and the bucket between them
+  covering.objects = {InView(2, "cabinet"), InView(3, "bucket"), InView(4, "chair")};
+  const std::vector<Detection> now = {Seen("cabinet"), Seen("chair")};
+  const RankedOcclusionInference result =
+      InferOccludedObjects(map, {&same, &other, &covering}, now);
+  EXPECT_EQ(result.used, 2);
+  ASSERT_EQ(result.inference.occluded.size(), 1u);
+  EXPECT_EQ(result.inference.occluded[0].id, 3);
+  // No keyframe covers: the most similar one is used and its inference says why it fails.
+  const RankedOcclusionInference none = InferOccludedObjects(map, {&same, &other}, now);
+  EXPECT_EQ(none.used, 0);
+  EXPECT_TRUE(none.inference.occluded.empty());
+  EXPECT_EQ(InferOccludedObjects(map, std::vector<const Keyframe*>{}, now).used, -1);
+}
+
 TEST(OcclusionInferenceTest, NothingMissingSaysSo) {
   const SemanticMap map = TwoRooms();
   Keyframe keyframe;
