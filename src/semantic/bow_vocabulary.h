@@ -54,7 +54,8 @@ class Vocabulary {
   // images without features are allowed but count in N). Each node is split by k-majority
   // (k_majority.h) down to options.levels; the IDF weight of word i is log(N / n_i) with n_i
   // the training images in which word i occurs (a word no image reaches counts as n_i = 1).
-  // 'progress' (may be empty) is called with (done, total) steps.
+  // 'progress' (may be empty) gets (done, total): one step per subtree under the root, then
+  // the IDF pass.
   static Result<Vocabulary> Train(
       const std::vector<cv::Mat>& images, const VocabularyOptions& options,
       const std::function<void(std::size_t, std::size_t)>& progress = {});

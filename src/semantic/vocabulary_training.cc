@@ -1,4 +1,5 @@
 // Vocabulary::Train (bow_vocabulary.h): the hierarchical k-majority tree and its IDF weights.
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -15,6 +16,8 @@ struct TreeBuilder {
   const VocabularyOptions& options;
   Rng rng;
   VocabularyData data;
+  // Called after each subtree under the root: (done, total) with total = root children + 1.
+  std::function<void(std::size_t, std::size_t)> progress;
 
   int AddNode(int parent, const cv::Mat& descriptor) {
     data.parent.push_back(parent);
@@ -46,7 +49,10 @@ struct TreeBuilder {
     for (int c = 0; c < clusters.centers.rows; ++c) {
       children.push_back(AddNode(node, clusters.centers.row(c)));
     }
-    for (std::size_t c = 0; c < children.size(); ++c) Split(children[c], depth + 1, members[c]);
+    for (std::size_t c = 0; c < children.size(); ++c) {
+      Split(children[c], depth + 1, members[c]);
+      if (depth == 0 && progress) progress(c + 1, children.size() + 1);
+    }
   }
 
   int NextWord() { return next_word++; }
@@ -91,20 +97,23 @@ Result<Vocabulary> Vocabulary::Train(
                          " descriptors are too few to train (need at least k = " +
                          std::to_string(options.branching) + ")");
   }
-  TreeBuilder builder{all, options, MakeRng(options.seed, 0), {}};
+  TreeBuilder builder{all, options, MakeRng(options.seed, 0), {}, progress};
   builder.data.branching = options.branching;
   builder.data.levels = options.levels;
   builder.data.training_images = static_cast<int>(images.size());
   builder.AddNode(-1, cv::Mat::zeros(1, kOrbDescriptorBytes, CV_8UC1));
   std::vector<int> rows(static_cast<std::size_t>(all.rows));
   for (int i = 0; i < all.rows; ++i) rows[i] = i;
-  if (progress) progress(0, 3);
   builder.Split(0, 0, rows);
-  if (progress) progress(2, 3);
   Result<Vocabulary> unweighted = FromData(builder.data);
   SEMCHAIN_CHECK(unweighted.ok());
   SetIdfWeights(images, *unweighted, &builder.data);
-  if (progress) progress(3, 3);
+  if (progress) {  // the IDF pass is the last step
+    const auto root_children =
+        std::count(builder.data.parent.begin(), builder.data.parent.end(), 0);
+    const std::size_t total = static_cast<std::size_t>(root_children) + 1;
+    progress(total, total);
+  }
   return FromData(std::move(builder.data));
 }
 
