@@ -87,6 +87,7 @@ struct QueryArgs {
 
 Status RunQuery(const QueryArgs& args) {
   if (args.top < 1) return Status::Error("--top must be at least 1");
+  // The vocabulary first, so that a bad vocabulary file is the error reported.
   Result<semantic::Vocabulary> vocabulary = semantic::ReadVocabulary(args.vocabulary);
   if (!vocabulary.ok()) return vocabulary.status();
   Result<semantic::KeyframeDatabase> keyframes =

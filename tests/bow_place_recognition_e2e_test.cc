@@ -26,8 +26,9 @@
 #include "io/trajectory_io.h"
 #include "io/trajectory_lookup.h"
 #include "mapping/slam_pipeline.h"
+#include "semantic/bow_occlusion.h"
+#include "semantic/bow_vocabulary_io.h"
 #include "semantic/keyframe_recognizer.h"
-#include "semantic/occlusion_inference.h"
 #include "semantic/run_features.h"
 #include "semantic/semantic_run.h"
 #include "sim/simulator.h"
@@ -193,6 +194,36 @@ TEST_F(BowEndToEndTest, SecondPassPrecisionAndRecall) {
   EXPECT_GE(recall, 0.95);
 }
 
+// The files a localizer loads: the vocabulary file and MAP/keyframes.json with the run's frames.
+TEST_F(BowEndToEndTest, LoadedRecognizerFindsTheFrameItself) {
+  const fs::path vocabulary = *root_ / "vocab.bin";
+  const fs::path keyframes_json = *root_ / "keyframes.json";
+  ASSERT_TRUE(semantic::WriteVocabulary(vocabulary, *vocabulary_).ok());
+  semantic::KeyframeDatabase keyframes;
+  keyframes.run = (*root_ / "mapping").string();
+  for (std::size_t i = 0; i < 40; ++i) {
+    semantic::Keyframe keyframe;
+    keyframe.frame = mapping_->frames[i * 8].frame;
+    keyframe.pose = mapping_->truth[i * 8];
+    keyframes.keyframes.push_back(keyframe);
+  }
+  ASSERT_TRUE(semantic::WriteKeyframes(keyframes_json, keyframes).ok());
+  const Result<semantic::KeyframeRecognizer> recognizer =
+      semantic::LoadKeyframeRecognizer(vocabulary, keyframes_json);
+  ASSERT_TRUE(recognizer.ok()) << recognizer.status().message();
+  ASSERT_EQ(recognizer->database().size(), 40);
+  for (int k : {0, 13, 39}) {
+    const auto best = recognizer->QueryDescriptors(mapping_->descriptors[k * 8], 1);
+    ASSERT_EQ(best.size(), 1u);
+    EXPECT_EQ(best[0].keyframe, k);
+    EXPECT_NEAR(best[0].score, 1.0, 1e-9);
+  }
+  const Result<semantic::KeyframeRecognizer> missing =
+      semantic::LoadKeyframeRecognizer(vocabulary, *root_ / "none.json");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.status().message().find("none.json"), std::string::npos);
+}
+
 // The id of the mapped object of class 'name' nearest to 'where' (within 0.3 m), or -1.
 int MappedId(const semantic::SemanticMap& map, const std::string& name,
              const Eigen::Vector2d& where) {
@@ -290,14 +321,12 @@ TEST_F(BowEndToEndTest, OccludedBucketInTheChangedWorld) {
         continue;
       }
       ++frames;
-      std::vector<const semantic::Keyframe*> ranked;
-      for (const auto& match : recognizer.QueryDescriptors(live.descriptors[q], kRanked)) {
-        ranked.push_back(&recognizer.keyframe(match.keyframe));
-      }
-      const semantic::RankedOcclusionInference ranked_inference =
-          semantic::InferOccludedObjects(map, ranked, frame.detections);
-      if (ranked_inference.used < 0) continue;
-      const semantic::OcclusionInference& inference = ranked_inference.inference;
+      semantic::OcclusionQueryOptions occlusion;
+      occlusion.candidates = kRanked;
+      const semantic::OcclusionQuery query = semantic::QueryOccludedObjects(
+          recognizer, map, live.descriptors[q], frame.detections, occlusion);
+      if (query.inference.used < 0) continue;
+      const semantic::OcclusionInference& inference = query.inference.inference;
       const bool names_bucket = std::any_of(inference.occluded.begin(), inference.occluded.end(),
                                             [](const auto& o) { return o.class_name == "bucket"; });
       const bool right_node =
@@ -310,7 +339,8 @@ TEST_F(BowEndToEndTest, OccludedBucketInTheChangedWorld) {
       if (!right_node) {
         std::printf("missed: run %zu %s at (%.2f, %.2f, %.0f°) -> keyframe %s: %s\n", r,
                     frame.frame.c_str(), pose.x, pose.y, pose.theta * 180 / std::numbers::pi,
-                    ranked[ranked_inference.used]->frame.c_str(), inference.reason.c_str());
+                    recognizer.keyframe(query.matches[query.inference.used].keyframe).frame.c_str(),
+                    inference.reason.c_str());
       }
     }
   }
