@@ -69,6 +69,26 @@ TEST_F(ToyVocabularyTest, DirectIndexGroupsFeaturesByNode) {
   EXPECT_EQ(sizes, (std::multiset<std::size_t>{1, 2}));
 }
 
+// A file can pass its checksum and still describe a broken tree (written by another program):
+// FromData refuses it with a message instead of descending into garbage.
+TEST_F(ToyVocabularyTest, FromDataRefusesBrokenTrees) {
+  VocabularyData forward = vocabulary_.data();
+  forward.parent[1] = 3;
+  const Result<Vocabulary> a = Vocabulary::FromData(forward);
+  ASSERT_FALSE(a.ok());
+  EXPECT_NE(a.status().message().find("does not come before it"), std::string::npos);
+  VocabularyData duplicate = vocabulary_.data();
+  duplicate.word[2] = duplicate.word[1];
+  EXPECT_FALSE(Vocabulary::FromData(duplicate).ok());
+  VocabularyData inner_word = vocabulary_.data();
+  inner_word.word[0] = 0;  // the root has children: it cannot be a word
+  EXPECT_FALSE(Vocabulary::FromData(inner_word).ok());
+  VocabularyData negative = vocabulary_.data();
+  negative.weight[1] = -1.0;
+  EXPECT_FALSE(Vocabulary::FromData(negative).ok());
+  EXPECT_TRUE(Vocabulary::FromData(vocabulary_.data()).ok());
+}
+
 TEST(VocabularyTest, TreeRespectsKAndLAndIsReproducible) {
   std::vector<cv::Mat> images;
   for (int i = 0; i < 20; ++i)
