@@ -253,6 +253,9 @@ TEST_F(BowEndToEndTest, OccludedBucketInTheChangedWorld) {
   ASSERT_TRUE(scans.ok());
   mapping::SlamOptions slam_options;
   slam_options.rbpf.seed = 1;
+  // 10 particles instead of 30: the same result below (8 of 11, the same misses) in less time,
+  // which keeps this test under a minute on a loaded machine.
+  slam_options.rbpf.particles = 10;
   const mapping::SlamResult slam = mapping::RunSlam(*scans, slam_options);
   semantic::SemanticRunInputs inputs;
   inputs.run_dir = mapping_run;
