@@ -39,6 +39,9 @@ std::vector<localization::PoseHypothesis> ToHypotheses(
   return hypotheses;
 }
 
+// The covariance of a renewed prior, relative to the pre-localization's.
+constexpr double kRenewedPriorScale = 4.0;
+
 // Tracking covariance after a scan matcher found the robot.
 const Eigen::Matrix3d kTrackingCovariance =
     Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal();
@@ -98,23 +101,32 @@ class MethodRun {
   int Step(const StampedScan& scan, const RelocFrame* frame, RelocTrace* trace) {
     if (method_ == "amcl") return Track(scan);
     if (method_ == "semantic-amcl") {
-      const bool want = !seeded_ || amcl_.FailureDetected();
-      if (frame && want) {
+      // Every frame with two objects in view is a semantic measurement: the first seeds the
+      // particles, each later one renews the prior; between frames the prior moves with the
+      // odometry (the robot turns between frames, the prior's heading must follow).
+      if (frame) {
         const auto candidates = PreLocalize(scan, *frame, trace);
         if (!candidates.empty()) {
-          const auto hypotheses = ToHypotheses(candidates);
-          amcl_.InitializeFromHypotheses(hypotheses);
-          amcl_.SetPosePrior(hypotheses);
-          filter_pose_.reset();
-          seeded_ = true;
-          prior_updates_ = 0;
+          prior_ = ToHypotheses(candidates);
+          prior_odometry_ = scan.odometry;
+          if (!seeded_ || amcl_.FailureDetected()) {
+            amcl_.InitializeFromHypotheses(*prior_);
+            filter_pose_.reset();
+            seeded_ = true;
+          } else {
+            // Once seeded, the prior only has to keep the filter in the right place; a looser
+            // one leaves the fine pose to the laser.
+            for (localization::PoseHypothesis& h : *prior_) h.covariance *= kRenewedPriorScale;
+          }
         }
       }
-      const int updates = Track(scan);
-      if (amcl_.has_pose_prior() && (prior_updates_ += updates) >= kPriorUpdates) {
-        amcl_.ClearPosePrior();
+      if (prior_) {
+        std::vector<localization::PoseHypothesis> moved = *prior_;
+        const Pose2 motion = prior_odometry_.Between(scan.odometry);
+        for (localization::PoseHypothesis& h : moved) h.pose = h.pose * motion;
+        amcl_.SetPosePrior(moved);
       }
-      return updates;
+      return Track(scan);
     }
     // Scan-matcher methods: relocalize once, then track.
     if (!tracking_) {
@@ -159,10 +171,6 @@ class MethodRun {
     return updated ? 1 : 0;
   }
 
-  // Updates the prior weights the particles before it is dropped (the prior is a one-off
-  // measurement; kept for ever it would hold the filter on a stale guess).
-  static constexpr int kPriorUpdates = 10;
-
   const std::string& method_;
   const RelocMap& map_;
   const RelocRunInputs& inputs_;
@@ -175,7 +183,9 @@ class MethodRun {
   double last_heading_ = 0.0;
   double turned_ = 0.0;  // radians turned (odometry) before a scan matcher found the robot
   bool tracking_ = false;
-  int prior_updates_ = 0;
+  // The latest pre-localization and the odometry when it was made.
+  std::optional<std::vector<localization::PoseHypothesis>> prior_;
+  Pose2 prior_odometry_;
 };
 
 }  // namespace

@@ -22,8 +22,9 @@
 //   amcl                AMCL initialised globally (laser only, nav2 defaults)
 //   semantic-amcl       chain pre-localization (seed 000 §3.1) seeds AMCL with Gaussians around
 //                       the hypotheses and weights its particles by the prior (seed 000 §3.2);
-//                       laser-only AMCL until a frame shows two objects, and pre-localization
-//                       again whenever the filter reports a collapse
+//                       laser-only AMCL until a frame shows two objects; every later such frame
+//                       renews the prior (moved on by odometry in between), and re-seeds the
+//                       particles when the filter reports a collapse
 //   semantic-scanmatch  the hypotheses bound the window of branch-and-bound + Ceres (seed 001);
 //                       after a full turn without two objects in view, the whole map
 //   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
