@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The end-to-end demo on a bundled world: simulate a mapping run, build the map with SLAM and
 # fuse the depth camera into it, score it against the simulator's truth, put the detected objects
-# on the map and link them into semantic chains, plan a route S -> P1 -> P2 on the fused map, and
-# draw world, run, map (with objects and chains) and route as PNG.
+# on the map and link them into semantic chains, plan a route S -> P1 -> P2 on the fused map,
+# relocalize from a few random starts with every method, and draw world, run, map (with objects
+# and chains) and route as PNG.
 #   scripts/demo.sh [OUTPUT_DIR [WORLD.yaml]]   (defaults: demo/, worlds/two_similar_rooms.yaml)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -33,5 +34,8 @@ points=($(awk '$1 !~ /^#/ && NF == 4 { p[n++] = $2 "," $3 } END { print p[0], p[
 step "plan: ${points[0]} -> ${points[1]} -> ${points[2]} on the fused map"
 "$semchain" plan --map "$out/map" --from "${points[0]}" --to "${points[1]};${points[2]}" \
   --out "$out/route.json" --png "$out/route.png"
+step "bench reloc: 3 relocalization trials in $world, every method (table in $out/reloc/results.md)"
+"$semchain" bench reloc --world "$world" --trials 3 --seed 1 \
+  --methods amcl,semantic-amcl,semantic-scanmatch,scanmatch-global --out "$out/reloc"
 step "done: pictures in $out"
 ls -1 "$out"/*.png
