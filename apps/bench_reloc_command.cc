@@ -70,7 +70,8 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
       ->capture_default_str();
   command
       ->add_option("--methods", args->options.methods,
-                   "amcl, semantic-amcl, semantic-scanmatch, scanmatch-global (comma-separated)")
+                   "amcl, semantic-amcl, semantic-amcl-bow, semantic-scanmatch, scanmatch-global "
+                   "(comma-separated)")
       ->delimiter(',');
   command->add_option("--out", args->out, "Output folder (results.json, results.md)")->required();
   command->callback([args, &exit_code] { exit_code = RunBenchReloc(*args); });

@@ -16,9 +16,11 @@
 #include "io/camera_io.h"
 #include "io/carmen.h"
 #include "io/detections_io.h"
+#include "io/rgbd_frame_io.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
 #include "mapping/slam_pipeline.h"
+#include "semantic/bow_occlusion.h"
 #include "semantic/semantic_map_io.h"
 
 namespace semchain::app {
@@ -31,6 +33,7 @@ struct LocalizeArgs {
   std::string run;
   std::string method;
   std::string out;
+  std::string vocab;  // semantic-amcl-bow
   int seed = 1;
 };
 
@@ -55,7 +58,8 @@ Status CheckSemanticFitsMap(const semantic::SemanticMap& semantic, const mapping
 Status RunLocalize(const LocalizeArgs& args) {
   if (!eval::IsRelocMethod(args.method)) {
     return Status::Error("--method: unknown method '" + args.method +
-                         "' (amcl, semantic-amcl, semantic-scanmatch, scanmatch-global)");
+                         "' (amcl, semantic-amcl, semantic-amcl-bow, semantic-scanmatch, "
+                         "scanmatch-global)");
   }
   const fs::path map_dir(args.map);
   const fs::path run(args.run);
@@ -83,16 +87,26 @@ Status RunLocalize(const LocalizeArgs& args) {
     std::size_t detections = 0;
     for (const FrameDetections& frame : *frames) {
       detections += frame.detections.size();
-      inputs.frames.push_back({frame.stamp, frame.detections});
+      inputs.frames.push_back({frame.stamp, frame.detections, ColorImagePath(run, frame.frame)});
     }
     if (detections == 0) {
       return Status::Error((run / "detections.jsonl").string() + ": no detections at all: " +
                            args.method + " needs objects in view (use amcl or scanmatch-global)");
     }
   }
-  const eval::RelocMap reloc_map(*map, *semantic, localization::AmclOptions(),
-                                 semantic::PreLocalizationOptions(),
-                                 localization::ScanMatchRelocalizerOptions());
+  eval::RelocMap reloc_map(*map, *semantic, localization::AmclOptions(),
+                           semantic::PreLocalizationOptions(),
+                           localization::ScanMatchRelocalizerOptions());
+  if (args.method == "semantic-amcl-bow") {
+    if (args.vocab.empty()) {
+      return Status::Error("--method semantic-amcl-bow needs --vocab (semchain vocab train)");
+    }
+    Result<semantic::KeyframeRecognizer> recognizer =
+        semantic::LoadKeyframeRecognizer(args.vocab, map_dir / "keyframes.json");
+    if (!recognizer.ok()) return recognizer.status();
+    reloc_map.recognizer =
+        std::make_shared<const semantic::KeyframeRecognizer>(std::move(*recognizer));
+  }
   const eval::RelocTrace trace = eval::RunRelocMethod(args.method, reloc_map, inputs);
 
   nlohmann::json result = {{"method", args.method},
@@ -127,7 +141,8 @@ Status RunLocalize(const LocalizeArgs& args) {
 void AddLocalizeCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "localize",
-      "Relocalize a recorded run on a map: amcl, semantic-amcl, semantic-scanmatch or "
+      "Relocalize a recorded run on a map: amcl, semantic-amcl, semantic-amcl-bow, "
+      "semantic-scanmatch or "
       "scanmatch-global; prints the pose (and its error against RUN/truth.txt) as JSON");
   auto args = std::make_shared<LocalizeArgs>();
   command->add_option("--map", args->map, "Map directory (map.yaml, semantic.json)")->required();
@@ -135,6 +150,9 @@ void AddLocalizeCommand(CLI::App& app, int& exit_code) {
       ->required();
   command->add_option("--method", args->method, "Relocalization method")->required();
   command->add_option("--out", args->out, "Also write the JSON here");
+  command->add_option("--vocab", args->vocab,
+                      "Vocabulary (semchain vocab train) for semantic-amcl-bow; the keyframes are "
+                      "MAP/keyframes.json");
   command->add_option("--seed", args->seed, "Seed of the filters")->capture_default_str();
   command->callback([args, &exit_code] {
     const Status status = RunLocalize(*args);

@@ -15,8 +15,13 @@
 #include "io/camera_io.h"
 #include "io/carmen.h"
 #include "io/detections_io.h"
+#include "io/rgbd_frame_io.h"
 #include "io/trajectory_io.h"
 #include "mapping/slam_pipeline.h"
+#include "semantic/bow_vocabulary.h"
+#include "semantic/keyframe_recognizer.h"
+#include "semantic/orb_features.h"
+#include "semantic/run_features.h"
 #include "semantic/semantic_run.h"
 #include "sim/scene.h"
 #include "sim/simulator.h"
@@ -36,8 +41,31 @@ constexpr double kMinAlpha = 0.005;
 struct BuiltMap {
   mapping::MapImage occupancy;
   semantic::SemanticMap semantic;
+  std::vector<semantic::Keyframe> keyframes;
   double ate = 0.0;
 };
+
+// The bag of words of the mapping run (seed 000 §3.1 steps 1–2): a vocabulary trained on its
+// frames and its keyframes described with it.
+Result<std::shared_ptr<const semantic::KeyframeRecognizer>> BuildRecognizer(const BuiltMap& built,
+                                                                            const fs::path& run,
+                                                                            std::uint64_t seed) {
+  Result<std::vector<fs::path>> images = semantic::ListColorFrames(run);
+  if (!images.ok()) return images.status();
+  Result<std::vector<cv::Mat>> descriptors =
+      semantic::ExtractImageDescriptors(*images, semantic::OrbOptions());
+  if (!descriptors.ok()) return descriptors.status();
+  semantic::VocabularyOptions options;
+  options.seed = seed;
+  Result<semantic::Vocabulary> vocabulary = semantic::Vocabulary::Train(*descriptors, options);
+  if (!vocabulary.ok()) return vocabulary.status();
+  semantic::KeyframeDatabase database{run.string(), built.keyframes};
+  Result<semantic::KeyframeRecognizer> recognizer = semantic::KeyframeRecognizer::Build(
+      std::move(*vocabulary), std::move(database), semantic::KeyframeRecognizerOptions(), run);
+  if (!recognizer.ok()) return recognizer.status();
+  return std::shared_ptr<const semantic::KeyframeRecognizer>(
+      std::make_shared<semantic::KeyframeRecognizer>(std::move(*recognizer)));
+}
 
 Result<BuiltMap> BuildMap(const sim::World& world, std::uint64_t seed, const fs::path& run) {
   sim::SimulationOptions simulation;
@@ -66,6 +94,7 @@ Result<BuiltMap> BuildMap(const sim::World& world, std::uint64_t seed, const fs:
       semantic::MapRun(inputs, semantic::SemanticMapOptions());
   if (!mapped.ok()) return mapped.status();
   built.semantic = mapped->map;
+  built.keyframes = mapped->keyframes;
   return built;
 }
 
@@ -148,7 +177,7 @@ Result<TrialData> SimulateTrial(const sim::World& world, const Pose2& start, std
   Result<std::vector<FrameDetections>> frames = ReadDetectionsJsonl(run / "detections.jsonl");
   if (!frames.ok()) return frames.status();
   for (const FrameDetections& frame : *frames) {
-    data.inputs.frames.push_back({frame.stamp, frame.detections});
+    data.inputs.frames.push_back({frame.stamp, frame.detections, ColorImagePath(run, frame.frame)});
   }
   Result<CameraInfo> camera = ReadCameraYaml(run / "camera.yaml");
   if (!camera.ok()) return camera.status();
@@ -262,7 +291,8 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   for (const std::string& method : options.methods) {
     if (!IsRelocMethod(method)) {
       return Status::Error("--methods: unknown method '" + method +
-                           "' (amcl, semantic-amcl, semantic-scanmatch, scanmatch-global)");
+                           "' (amcl, semantic-amcl, semantic-amcl-bow, semantic-scanmatch, "
+                           "scanmatch-global)");
     }
   }
   Result<sim::World> world = sim::LoadWorld(world_path);
@@ -304,8 +334,14 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   amcl.alpha2 = std::max(kMinAlpha, kAlphaMargin * noise[1]);
   amcl.alpha3 = std::max(kMinAlpha, kAlphaMargin * noise[2]);
   amcl.alpha4 = std::max(kMinAlpha, kAlphaMargin * noise[3]);
-  const RelocMap map(built->occupancy, built->semantic, amcl, semantic::PreLocalizationOptions(),
-                     localization::ScanMatchRelocalizerOptions());
+  RelocMap map(built->occupancy, built->semantic, amcl, semantic::PreLocalizationOptions(),
+               localization::ScanMatchRelocalizerOptions());
+  if (std::find(options.methods.begin(), options.methods.end(), "semantic-amcl-bow") !=
+      options.methods.end()) {
+    auto recognizer = BuildRecognizer(*built, work / "mapping", options.seed);
+    if (!recognizer.ok()) return recognizer.status();
+    map.recognizer = *recognizer;
+  }
 
   RelocBenchmarkResult result;
   result.world = world_path.string();

@@ -19,8 +19,8 @@ namespace semchain::eval {
 struct RelocBenchmarkOptions {
   int trials = 35;
   std::uint64_t seed = 1;
-  std::vector<std::string> methods = {"amcl", "semantic-amcl", "semantic-scanmatch",
-                                      "scanmatch-global"};
+  std::vector<std::string> methods = {"amcl", "semantic-amcl", "semantic-amcl-bow",
+                                      "semantic-scanmatch", "scanmatch-global"};
   double success_distance = 0.25;   // metres
   double success_heading = 0.1745;  // radians (10°)
   double time_limit = 30.0;         // seconds of simulated time

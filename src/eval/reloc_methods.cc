@@ -6,6 +6,9 @@
 #include <cmath>
 
 #include "core/angles.h"
+#include "io/rgbd_frame_io.h"
+#include "semantic/bow_occlusion.h"
+#include "semantic/orb_features.h"
 
 namespace semchain::eval {
 namespace {
@@ -59,7 +62,9 @@ class MethodRun {
     std::size_t next_frame = 0;
     double cpu = 0.0;
     int iterations = 0;
-    if (method_ == "amcl" || method_ == "semantic-amcl") amcl_.InitializeGlobal();
+    if (method_ == "amcl" || method_ == "semantic-amcl" || method_ == "semantic-amcl-bow") {
+      amcl_.InitializeGlobal();
+    }
     for (const StampedScan& scan : inputs_.scans) {
       const double start = ThreadCpuSeconds();
       // The frame taken at this scan, if any.
@@ -97,15 +102,46 @@ class MethodRun {
     return candidates;
   }
 
+  // Seed 000 §3.1 steps 3–4: the most similar keyframes name the object hidden now; its two
+  // chain neighbours, seen now, pre-localize the robot.
+  std::vector<semantic::PoseCandidate> PreLocalizeHidden(const StampedScan& scan,
+                                                         const RelocFrame& frame,
+                                                         RelocTrace* trace) const {
+    if (!map_.recognizer || frame.image.empty() || frame.detections.empty()) return {};
+    Result<cv::Mat> image = ReadColorImage(frame.image);
+    if (!image.ok()) return {};
+    const cv::Mat descriptors = semantic::ExtractOrbDescriptors(*image, semantic::OrbOptions());
+    const semantic::OcclusionQuery query = semantic::QueryOccludedObjects(
+        *map_.recognizer, map_.semantic, descriptors, frame.detections);
+    const auto& occluded = query.inference.inference.occluded;
+    if (occluded.empty()) return {};
+    const std::vector<semantic::ObservedObject> observed = semantic::ObserveObjects(
+        frame.detections, inputs_.camera, map_.prelocalizer.options().min_score);
+    const std::vector<Eigen::Vector2d> points =
+        map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
+    const std::vector<int> neighbours = {occluded.front().upstream, occluded.front().downstream};
+    std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.Localize(
+        observed, [&](const Pose2& pose) { return LaserFit(map_.matcher, points, pose); },
+        &neighbours);
+    ++trace->hidden_object_prelocalizations;
+    if (!candidates.empty() && !trace->prelocalization) {
+      trace->prelocalization = candidates.front().pose;
+    }
+    return candidates;
+  }
+
   // Processes one scan; returns the filter updates / matcher runs it took.
   int Step(const StampedScan& scan, const RelocFrame* frame, RelocTrace* trace) {
     if (method_ == "amcl") return Track(scan);
-    if (method_ == "semantic-amcl") {
+    if (method_ == "semantic-amcl" || method_ == "semantic-amcl-bow") {
       // Every frame with two objects in view is a semantic measurement: the first seeds the
       // particles, each later one renews the prior; between frames the prior moves with the
       // odometry (the robot turns between frames, the prior's heading must follow).
       if (frame) {
-        const auto candidates = PreLocalize(scan, *frame, trace);
+        auto candidates = PreLocalize(scan, *frame, trace);
+        if (candidates.empty() && method_ == "semantic-amcl-bow") {
+          candidates = PreLocalizeHidden(scan, *frame, trace);
+        }
         if (!candidates.empty()) {
           prior_ = ToHypotheses(candidates);
           prior_odometry_ = scan.odometry;
@@ -191,8 +227,8 @@ class MethodRun {
 }  // namespace
 
 const std::vector<std::string>& RelocMethodNames() {
-  static const std::vector<std::string> kNames = {"amcl", "semantic-amcl", "semantic-scanmatch",
-                                                  "scanmatch-global"};
+  static const std::vector<std::string> kNames = {"amcl", "semantic-amcl", "semantic-amcl-bow",
+                                                  "semantic-scanmatch", "scanmatch-global"};
   return kNames;
 }
 

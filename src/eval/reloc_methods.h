@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include "localization/localization_map.h"
 #include "localization/scan_match_relocalizer.h"
 #include "mapping/map_io.h"
+#include "semantic/keyframe_recognizer.h"
 #include "semantic/prelocalization.h"
 #include "semantic/semantic_map.h"
 #include "sensors/camera.h"
@@ -25,6 +27,9 @@
 //                       laser-only AMCL until a frame shows two objects; every later such frame
 //                       renews the prior (moved on by odometry in between), and re-seeds the
 //                       particles when the filter reports a collapse
+//   semantic-amcl-bow   semantic-amcl; when a frame's objects give no hypothesis, the bag of words
+//                       finds the most similar keyframe, names the object hidden now and
+//                       pre-localizes from its two chain neighbours (seed 000 §3.1 steps 3–4)
 //   semantic-scanmatch  the hypotheses bound the window of branch-and-bound + Ceres (seed 001);
 //                       after a full turn without two objects in view, the whole map
 //   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
@@ -47,12 +52,15 @@ struct RelocMap {
   localization::LocalizationMap localization;
   semantic::PreLocalizer prelocalizer;
   localization::ScanMatchRelocalizer matcher;
+  // The keyframes of the mapping run with their vocabulary (semantic-amcl-bow); may be null.
+  std::shared_ptr<const semantic::KeyframeRecognizer> recognizer;
 };
 
 // One camera frame of a run, taken at the time of a scan.
 struct RelocFrame {
   double stamp = 0.0;
   std::vector<Detection> detections;
+  std::filesystem::path image;  // the colour image (semantic-amcl-bow)
 };
 
 // The pose a method gives after each scan (nothing while it has no estimate), the work it did
@@ -64,6 +72,7 @@ struct RelocTrace {
   std::optional<Pose2> prelocalization;         // the first best hypothesis, when there was one
   int prelocalization_scan = -1;                // the scan it was made at
   int prelocalizations = 0;                     // times pre-localization was run with ≥ 2 objects
+  int hidden_object_prelocalizations = 0;       // ... from a hidden object's neighbours (BoW)
 };
 
 struct RelocRunInputs {

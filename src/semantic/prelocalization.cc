@@ -272,7 +272,10 @@ int PreLocalizer::CountAgreeing(const std::vector<ObservedObject>& observed,
 
 std::vector<PoseCandidate> PreLocalizer::Localize(
     const std::vector<ObservedObject>& observed,
-    const std::function<double(const Pose2&)>& laser_score) const {
+    const std::function<double(const Pose2&)>& laser_score, const std::vector<int>* only) const {
+  const auto allowed = [only](int id) {
+    return only == nullptr || std::find(only->begin(), only->end(), id) != only->end();
+  };
   std::vector<PoseCandidate> candidates;
   std::map<int, int> index_of_id;
   for (std::size_t o = 0; o < objects_.size(); ++o)
@@ -285,6 +288,7 @@ std::vector<PoseCandidate> PreLocalizer::Localize(
       for (const auto& [a, b, distance] :
            RetrievePairs(observed[i].class_name, observed[j].class_name, d)) {
         (void)distance;
+        if (!allowed(a) || !allowed(b)) continue;
         AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), index_of_id[a],
                           index_of_id[b], &candidates);
       }

@@ -95,9 +95,11 @@ class PreLocalizer {
 
   // Hypotheses for a frame's observed objects (at least two needed), best first.
   // 'laser_score' (may be empty) rates a pose by the current laser scan, higher is better.
-  std::vector<PoseCandidate> Localize(
-      const std::vector<ObservedObject>& observed,
-      const std::function<double(const Pose2&)>& laser_score = {}) const;
+  // 'only' (may be null) restricts the mapped pairs to these object ids (e.g. the chain
+  // neighbours of an object the bag of words found hidden).
+  std::vector<PoseCandidate> Localize(const std::vector<ObservedObject>& observed,
+                                      const std::function<double(const Pose2&)>& laser_score = {},
+                                      const std::vector<int>* only = nullptr) const;
 
   // The mapped pairs of classes (a, b) whose distance D satisfies the tolerance for an
   // observed distance d (seed 001 retrieval): (object id a, object id b, D).
