@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/map_grey.h"
 #include "apps/semantic_drawing.h"
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
@@ -133,19 +134,6 @@ Status ReadMapDirectory(const fs::path& dir, const RenderArgs& args, Picture& pi
     for (const StampedPose& p : *slam) picture.slam.push_back(p.pose);
   }
   return LoadOverlayWorld(args.world, picture);
-}
-
-// The map as a grey image, top row first: free white, occupied black, unknown grey.
-cv::Mat MapToGrey(const mapping::MapImage& map) {
-  cv::Mat grey(map.height, map.width, CV_8UC1);
-  for (int y = 0; y < map.height; ++y) {
-    for (int x = 0; x < map.width; ++x) {
-      const int value = map.At(x, y);
-      grey.at<std::uint8_t>(map.height - 1 - y, x) =
-          value < 0 ? 205 : static_cast<std::uint8_t>(254 - value * 254 / 100);
-    }
-  }
-  return grey;
 }
 
 sim::Bounds PictureBounds(const Picture& picture) {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/map_grey.h"
 #include "apps/semantic_drawing.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
@@ -56,16 +57,15 @@ Result<std::vector<FrameDetections>> DetectWithModel(const SemanticArgs& args) {
   return detection::DetectRunFrames(**detector, args.run, run_options);
 }
 
-// Grey map (free white, occupied black, unknown grey), row 0 at the top; free cells of odd
-// regions a shade darker so that the regions the chains are built on can be told apart.
-cv::Mat MapGrey(const mapping::MapImage& map, const semantic::RegionMap& regions) {
-  cv::Mat grey(map.height, map.width, CV_8UC1);
+// The grey map with the free cells of odd regions a shade darker, so that the regions the
+// chains are built on can be told apart.
+cv::Mat MapWithRegions(const mapping::MapImage& map, const semantic::RegionMap& regions) {
+  cv::Mat grey = MapToGrey(map);
   for (int y = 0; y < map.height; ++y) {
     for (int x = 0; x < map.width; ++x) {
-      const int value = map.At(x, y);
-      std::uint8_t pixel = value < 0 ? 205 : static_cast<std::uint8_t>(254 - value * 254 / 100);
-      if (value == 0 && regions.labels.at<int>(y, x) % 2 == 1) pixel = 232;
-      grey.at<std::uint8_t>(map.height - 1 - y, x) = pixel;
+      if (map.At(x, y) == 0 && regions.labels.at<int>(y, x) % 2 == 1) {
+        grey.at<std::uint8_t>(map.height - 1 - y, x) = 232;
+      }
     }
   }
   return grey;
@@ -83,7 +83,7 @@ Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMa
   if (!canvas.ok()) return canvas.status();
   const semantic::RegionMap regions =
       semantic::SegmentRegions(map, semantic::SemanticMapOptions().chain);
-  sim::DrawGreyImage(MapGrey(map, regions), origin, map.resolution, *canvas);
+  sim::DrawGreyImage(MapWithRegions(map, regions), origin, map.resolution, *canvas);
   DrawSemanticMap(semantic, *canvas);
   return sim::WritePng(canvas->Compose(), path);
 }

@@ -15,6 +15,16 @@ CellState ClassifyMapCell(const MapImage& map, int x, int y) {
   return CellState::kUnknown;
 }
 
+cv::Mat MapCellMask(const MapImage& map, CellState state) {
+  cv::Mat mask(map.height, map.width, CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      if (ClassifyMapCell(map, x, y) == state) mask.at<std::uint8_t>(y, x) = 255;
+    }
+  }
+  return mask;
+}
+
 DistanceField::DistanceField(const MapImage& map, double max_distance_meters)
     : width_(map.width),
       height_(map.height),

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "mapping/map_io.h"
@@ -16,6 +17,10 @@ enum class CellState : signed char { kFree = -1, kUnknown = 0, kOccupied = 1 };
 // How map_server thresholds a cell value (0..100, -1 unknown): occupied at or above
 // occupied_thresh, free at or below free_thresh, unknown in between.
 CellState ClassifyMapCell(const MapImage& map, int x, int y);
+
+// CV_8UC1 of the map's size, row = cell y (row 0 at the bottom): 255 where ClassifyMapCell gives
+// 'state', 0 elsewhere.
+cv::Mat MapCellMask(const MapImage& map, CellState state);
 
 class DistanceField {
  public:

@@ -7,6 +7,8 @@
 
 #include "core/angles.h"
 #include "core/transforms.h"
+#include "mapping/distance_field.h"
+#include "semantic/semantic_chain.h"
 
 namespace semchain::semantic {
 namespace {
@@ -142,14 +144,9 @@ PreLocalizer::PreLocalizer(const SemanticMap& map, const mapping::MapImage& occu
     std::sort(list.begin(), list.end(),
               [](const IndexedPair& x, const IndexedPair& y) { return x.distance < y.distance; });
   }
-  cv::Mat free(occupancy.height, occupancy.width, CV_8UC1, cv::Scalar(0));
-  for (int y = 0; y < occupancy.height; ++y) {
-    for (int x = 0; x < occupancy.width; ++x) {
-      if (occupancy.At(x, y) == 0) free.at<std::uint8_t>(y, x) = 255;
-    }
-  }
   if (occupancy.width > 0 && occupancy.height > 0) {
-    cv::distanceTransform(free, clearance_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    cv::distanceTransform(mapping::MapCellMask(occupancy, mapping::CellState::kFree), clearance_,
+                          cv::DIST_L2, cv::DIST_MASK_PRECISE);
     clearance_ *= occupancy.resolution;
   }
 }
@@ -183,12 +180,11 @@ std::vector<std::tuple<int, int, double>> PreLocalizer::RetrievePairs(const std:
 
 bool PreLocalizer::InFreeSpace(const Eigen::Vector2d& point) const {
   if (clearance_.empty()) return false;
-  const int x =
-      static_cast<int>(std::floor((point.x() - occupancy_.origin.x()) / occupancy_.resolution));
-  const int y =
-      static_cast<int>(std::floor((point.y() - occupancy_.origin.y()) / occupancy_.resolution));
-  if (x < 0 || y < 0 || x >= occupancy_.width || y >= occupancy_.height) return false;
-  return occupancy_.At(x, y) == 0 && clearance_.at<float>(y, x) >= options_.clearance;
+  const GridGeometry geometry = GeometryOf(occupancy_);
+  const Eigen::Vector2i cell = geometry.CellOf(point);
+  return geometry.Contains(cell) &&
+         mapping::ClassifyMapCell(occupancy_, cell.x(), cell.y()) == mapping::CellState::kFree &&
+         clearance_.at<float>(cell.y(), cell.x()) >= options_.clearance;
 }
 
 void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j,

@@ -8,15 +8,10 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "mapping/distance_field.h"
+
 namespace semchain::semantic {
 namespace {
-
-constexpr std::int8_t kFree = 0;
-
-bool Occupied(const mapping::MapImage& map, int x, int y) {
-  const std::int8_t value = map.At(x, y);
-  return value >= 0 && value >= 100 * map.occupied_thresh;
-}
 
 // Signed distance from 'point' to the polygon (positive inside), metres.
 double DistanceToFootprint(const SemanticObject& object, const Eigen::Vector2d& point) {
@@ -29,20 +24,26 @@ double DistanceToFootprint(const SemanticObject& object, const Eigen::Vector2d& 
       polygon, cv::Point2f(static_cast<float>(point.x()), static_cast<float>(point.y())), true);
 }
 
-// True when the segment from the object's centre to 'point' crosses no occupied cell farther
-// than 'margin' outside the object's footprint.
-bool InSight(const mapping::MapImage& map, const SemanticObject& object,
-             const Eigen::Vector2d& point) {
+// True when the segment from 'from' to 'to' crosses no occupied cell of 'map' farther than a
+// margin outside the footprints of 'own' (the objects at its ends, whose own cells are occupied).
+bool SegmentClear(const mapping::MapImage& map, const Eigen::Vector2d& from,
+                  const Eigen::Vector2d& to, std::initializer_list<const SemanticObject*> own) {
   constexpr double kObjectMargin = 0.1;
-  const double length = (point - object.center).norm();
+  const GridGeometry geometry = GeometryOf(map);
+  const double length = (to - from).norm();
   const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * map.resolution))));
-  const Eigen::Vector2d origin = map.origin.head<2>();
   for (int i = 0; i <= steps; ++i) {
-    const Eigen::Vector2d p = object.center + (point - object.center) * (double(i) / steps);
-    if (DistanceToFootprint(object, p) > -kObjectMargin) continue;
-    const int x = static_cast<int>(std::floor((p.x() - origin.x()) / map.resolution));
-    const int y = static_cast<int>(std::floor((p.y() - origin.y()) / map.resolution));
-    if (x >= 0 && y >= 0 && x < map.width && y < map.height && Occupied(map, x, y)) return false;
+    const Eigen::Vector2d p = from + (to - from) * (double(i) / steps);
+    if (std::any_of(own.begin(), own.end(), [&p](const SemanticObject* object) {
+          return DistanceToFootprint(*object, p) > -kObjectMargin;
+        })) {
+      continue;
+    }
+    const Eigen::Vector2i cell = geometry.CellOf(p);
+    if (geometry.Contains(cell) &&
+        mapping::ClassifyMapCell(map, cell.x(), cell.y()) == mapping::CellState::kOccupied) {
+      return false;
+    }
   }
   return true;
 }
@@ -55,14 +56,8 @@ GridGeometry GeometryOf(const mapping::MapImage& map) {
 
 RegionMap SegmentRegions(const mapping::MapImage& map, const ChainOptions& options) {
   RegionMap regions;
-  cv::Mat free(map.height, map.width, CV_8UC1, cv::Scalar(0));
-  cv::Mat occupied(map.height, map.width, CV_8UC1, cv::Scalar(0));
-  for (int y = 0; y < map.height; ++y) {
-    for (int x = 0; x < map.width; ++x) {
-      if (map.At(x, y) == kFree) free.at<std::uint8_t>(y, x) = 255;
-      if (Occupied(map, x, y)) occupied.at<std::uint8_t>(y, x) = 255;
-    }
-  }
+  cv::Mat free = mapping::MapCellMask(map, mapping::CellState::kFree);
+  cv::Mat occupied = mapping::MapCellMask(map, mapping::CellState::kOccupied);
   // Laser beams at grazing incidence punch holes into walls; closing the walls first keeps the
   // regions from leaking through them (doorways are far wider than the kernel).
   if (options.wall_closing_kernel > 1) {
@@ -153,7 +148,8 @@ int RegionOf(const RegionMap& regions, const mapping::MapImage& map, const Seman
           fallback_distance = d;
           fallback = region;
         }
-        if (d < best_distance && InSight(map, object, geometry.CenterOf({x, y}))) {
+        if (d < best_distance &&
+            SegmentClear(map, object.center, geometry.CenterOf({x, y}), {&object})) {
           best_distance = d;
           best = region;
         }
@@ -212,20 +208,7 @@ SemanticChain MakeChain(int region, const std::vector<int>& order,
 
 bool MutuallyVisible(const mapping::MapImage& map, const SemanticObject& a,
                      const SemanticObject& b) {
-  const GridGeometry geometry = GeometryOf(map);
-  const double length = (b.center - a.center).norm();
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * map.resolution))));
-  // Cells within this margin of either object belong to it, not to what lies between.
-  constexpr double kObjectMargin = 0.1;
-  for (int i = 0; i <= steps; ++i) {
-    const Eigen::Vector2d p = a.center + (b.center - a.center) * (double(i) / steps);
-    if (DistanceToFootprint(a, p) > -kObjectMargin || DistanceToFootprint(b, p) > -kObjectMargin) {
-      continue;
-    }
-    const Eigen::Vector2i cell = geometry.CellOf(p);
-    if (geometry.Contains(cell) && Occupied(map, cell.x(), cell.y())) return false;
-  }
-  return true;
+  return SegmentClear(map, a.center, b.center, {&a, &b});
 }
 
 int RegionOfViewed(const RegionMap& regions, const mapping::MapImage& map,

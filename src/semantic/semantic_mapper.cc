@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "core/transforms.h"
+#include "mapping/distance_field.h"
 #include "semantic/detection_points.h"
 #include "semantic/semantic_chain.h"
 
@@ -121,14 +122,9 @@ void SemanticMapper::AddFrame(const FrameDetections& frame, const Pose2& pose,
 
 SemanticMappingResult SemanticMapper::Finish() const {
   SemanticMappingResult result;
-  cv::Mat free_space(occupancy_.height, occupancy_.width, CV_8UC1, cv::Scalar(0));
-  for (int y = 0; y < occupancy_.height; ++y) {
-    for (int x = 0; x < occupancy_.width; ++x) {
-      if (occupancy_.At(x, y) == 0) free_space.at<std::uint8_t>(y, x) = 255;
-    }
-  }
   const ExtractedObjects extracted =
-      ExtractObjects(grid_, observations_, classes_, options_, free_space);
+      ExtractObjects(grid_, observations_, classes_, options_,
+                     mapping::MapCellMask(occupancy_, mapping::CellState::kFree));
   result.map.classes = classes_;
   result.map.objects = extracted.objects;
   Viewpoints viewpoints;
