@@ -73,6 +73,11 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
                    "amcl, semantic-amcl, semantic-amcl-bow, semantic-scanmatch, scanmatch-global "
                    "(comma-separated)")
       ->delimiter(',');
+  command->add_flag(
+      "!--no-observation-memory", args->options.method.observation_memory,
+      "Pre-localize from the current frame's objects only, not from all seen during the turn");
+  command->add_flag("!--no-single-object", args->options.method.single_object,
+                    "semantic-scanmatch: no single-object hypotheses before the whole-map search");
   command->add_option("--out", args->out, "Output folder (results.json, results.md)")->required();
   command->callback([args, &exit_code] { exit_code = RunBenchReloc(*args); });
 }

@@ -202,6 +202,7 @@ struct TrialOutcome {
   double error_rad = 0.0;
   bool prelocalized = false;
   Eigen::Vector2d prelocalization_error = Eigen::Vector2d::Zero();
+  double prelocalization_error_rad = 0.0;
 };
 
 TrialOutcome Score(const RelocTrace& trace, const TrialData& trial,
@@ -226,6 +227,8 @@ TrialOutcome Score(const RelocTrace& trace, const TrialData& trial,
     const Pose2& t = trial.truth[static_cast<std::size_t>(trace.prelocalization_scan)].pose;
     outcome.prelocalization_error =
         (trace.prelocalization->translation() - t.translation()).cwiseAbs();
+    outcome.prelocalization_error_rad =
+        std::abs(NormalizeAngle(trace.prelocalization->theta - t.theta));
   }
   if (n > 0 && trace.estimates.back()) {
     outcome.localized = true;
@@ -253,6 +256,7 @@ void Accumulate(const TrialOutcome& outcome, RelocMethodStats* stats) {
     ++stats->prelocalized;
     stats->prelocalization_error_x_m += outcome.prelocalization_error.x();
     stats->prelocalization_error_y_m += outcome.prelocalization_error.y();
+    stats->prelocalization_error_deg += outcome.prelocalization_error_rad * 180.0 / M_PI;
   }
   if (!outcome.success) return;
   ++stats->successes;
@@ -276,6 +280,7 @@ void Finish(RelocMethodStats* stats) {
   if (stats->prelocalized > 0) {
     stats->prelocalization_error_x_m /= stats->prelocalized;
     stats->prelocalization_error_y_m /= stats->prelocalized;
+    stats->prelocalization_error_deg /= stats->prelocalized;
   }
 }
 
@@ -334,6 +339,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   amcl.alpha4 = std::max(kMinAlpha, kAlphaMargin * noise[3]);
   RelocMap map(built->occupancy, built->semantic, amcl, semantic::PreLocalizationOptions(),
                localization::ScanMatchRelocalizerOptions());
+  map.method = options.method;
   if (std::find(options.methods.begin(), options.methods.end(), "semantic-amcl-bow") !=
       options.methods.end()) {
     auto recognizer = BuildRecognizer(*built, work / "mapping", options.seed);
@@ -365,10 +371,12 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
       record.start[2] = start.theta;
       record.success = outcome.success;
       record.time_s = outcome.time;
+      record.cpu_ms = 1000.0 * outcome.cpu;
       record.localized = outcome.localized;
       record.error_m = outcome.final_error_m;
       record.error_deg = outcome.final_error_rad * 180.0 / M_PI;
       record.prelocalizations = trace.prelocalizations;
+      record.single_object_prelocalizations = trace.single_object_prelocalizations;
       result.runs[method].push_back(record);
     }
     fs::remove_all(run, ignored);
@@ -391,7 +399,8 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                      {"mean_error_deg", s.mean_error_deg},
                      {"prelocalized", s.prelocalized},
                      {"prelocalization_error_x_m", s.prelocalization_error_x_m},
-                     {"prelocalization_error_y_m", s.prelocalization_error_y_m}};
+                     {"prelocalization_error_y_m", s.prelocalization_error_y_m},
+                     {"prelocalization_error_deg", s.prelocalization_error_deg}};
   }
   nlohmann::json runs = nlohmann::json::object();
   for (const auto& [name, records] : result.runs) {
@@ -401,10 +410,12 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                       {"start", {r.start[0], r.start[1], r.start[2]}},
                       {"success", r.success},
                       {"time_s", r.time_s},
+                      {"cpu_ms", r.cpu_ms},
                       {"localized", r.localized},
                       {"error_m", r.error_m},
                       {"error_deg", r.error_deg},
-                      {"prelocalizations", r.prelocalizations}});
+                      {"prelocalizations", r.prelocalizations},
+                      {"single_object_prelocalizations", r.single_object_prelocalizations}});
     }
     runs[name] = list;
   }

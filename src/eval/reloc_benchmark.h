@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/status.h"
+#include "eval/reloc_methods.h"
 
 // `semchain bench reloc` (DESIGN.md §4, seed 000 Tables 4–5, seed 001 Fig. 13/19): the map of a
 // world is built from a simulated mapping run (SLAM and semantic mapping, not the truth); the
@@ -29,6 +30,8 @@ struct RelocBenchmarkOptions {
   // The trial behaviour: turns in place, then a drive of at most this far.
   double trial_turns = 2.0;
   double trial_forward = 1.0;
+  // How the semantic methods use the camera (observation memory, single-object hypotheses).
+  RelocMethodOptions method;
   // Where the runs are made (removed afterwards); a temporary directory when empty.
   std::filesystem::path work_dir;
 };
@@ -47,6 +50,7 @@ struct RelocMethodStats {
   int prelocalized = 0;
   double prelocalization_error_x_m = 0.0;
   double prelocalization_error_y_m = 0.0;
+  double prelocalization_error_deg = 0.0;  // mean |θ| error
 };
 
 // One method on one trial.
@@ -55,10 +59,12 @@ struct RelocTrialRecord {
   double start[3] = {0.0, 0.0, 0.0};  // x, y, θ
   bool success = false;
   double time_s = 0.0;     // when successful
+  double cpu_ms = 0.0;     // until convergence, when successful
   bool localized = false;  // an estimate at the end
   double error_m = 0.0;    // at the end (when localized)
   double error_deg = 0.0;
   int prelocalizations = 0;
+  int single_object_prelocalizations = 0;
 };
 
 struct RelocBenchmarkResult {

@@ -19,15 +19,20 @@ double ThreadCpuSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// Mean M of the scan's returns at 'pose': how well the scan fits the map there.
-double LaserFit(const localization::ScanMatchRelocalizer& matcher,
+// How well the scan fits the map at 'pose': the mean over its returns of exp(−d² / 2σ²), d the
+// distance to the nearest occupied cell. σ is the error a pre-localization hypothesis is
+// expected to have (a few centimetres per metre of range), not the map's resolution: a sharper
+// fit would reject the right place for being 0.2 m off.
+constexpr double kLaserFitSigma = 0.15;
+
+double LaserFit(const localization::LocalizationMap& map,
                 const std::vector<Eigen::Vector2d>& points, const Pose2& pose) {
   if (points.empty()) return 0.0;
-  const mapping::MatchGrid& grid = matcher.grid();
+  const mapping::DistanceField& field = map.distance_field();
   double sum = 0.0;
   for (const Eigen::Vector2d& p : points) {
-    const Eigen::Vector2d cell = grid.ToGrid(pose * p);
-    sum += grid.At(static_cast<int>(std::floor(cell.x())), static_cast<int>(std::floor(cell.y())));
+    const double d = field.DistanceAt(pose * p);
+    sum += std::exp(-d * d / (2.0 * kLaserFitSigma * kLaserFitSigma));
   }
   return sum / static_cast<double>(points.size());
 }
@@ -86,16 +91,40 @@ class MethodRun {
   }
 
  private:
-  std::vector<semantic::PoseCandidate> PreLocalize(const StampedScan& scan, const RelocFrame& frame,
-                                                   RelocTrace* trace) const {
-    const std::vector<semantic::ObservedObject> observed = semantic::ObserveObjects(
+  // Remembers a frame's objects; returns what pre-localization may use now: nothing when the
+  // frame shows no object (what is remembered gave its hypotheses when it was seen).
+  std::vector<semantic::ObservedObject> Observe(const StampedScan& scan, const RelocFrame& frame) {
+    std::vector<semantic::ObservedObject> observed = semantic::ObserveObjects(
         frame.detections, inputs_.camera, map_.prelocalizer.options().min_score);
+    if (!map_.method.observation_memory) return observed;
+    memory_.Add(scan.odometry, observed);  // also when empty: it counts the turn
+    if (observed.empty()) return observed;
+    return memory_.Recall(scan.odometry);
+  }
+
+  std::vector<semantic::PoseCandidate> PreLocalize(
+      const StampedScan& scan, const std::vector<semantic::ObservedObject>& observed,
+      RelocTrace* trace) const {
     if (observed.size() < 2) return {};
     const std::vector<Eigen::Vector2d> points =
         map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
     std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.Localize(
-        observed, [&](const Pose2& pose) { return LaserFit(map_.matcher, points, pose); });
+        observed, [&](const Pose2& pose) { return LaserFit(map_.localization, points, pose); });
     ++trace->prelocalizations;
+    if (!candidates.empty() && !trace->prelocalization) {
+      trace->prelocalization = candidates.front().pose;
+    }
+    return candidates;
+  }
+
+  std::vector<semantic::PoseCandidate> PreLocalizeSingle(
+      const StampedScan& scan, const std::vector<semantic::ObservedObject>& observed,
+      RelocTrace* trace) const {
+    const std::vector<Eigen::Vector2d> points =
+        map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
+    std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.LocalizeSingle(
+        observed, [&](const Pose2& pose) { return LaserFit(map_.localization, points, pose); });
+    ++trace->single_object_prelocalizations;
     if (!candidates.empty() && !trace->prelocalization) {
       trace->prelocalization = candidates.front().pose;
     }
@@ -104,9 +133,9 @@ class MethodRun {
 
   // Seed 000 §3.1 steps 3–4: the most similar keyframes name the object hidden now; its two
   // chain neighbours, seen now, pre-localize the robot.
-  std::vector<semantic::PoseCandidate> PreLocalizeHidden(const StampedScan& scan,
-                                                         const RelocFrame& frame,
-                                                         RelocTrace* trace) const {
+  std::vector<semantic::PoseCandidate> PreLocalizeHidden(
+      const StampedScan& scan, const RelocFrame& frame,
+      const std::vector<semantic::ObservedObject>& observed, RelocTrace* trace) const {
     if (!map_.recognizer || frame.image.empty() || frame.detections.empty()) return {};
     Result<cv::Mat> image = ReadColorImage(frame.image);
     if (!image.ok()) return {};
@@ -115,13 +144,11 @@ class MethodRun {
         *map_.recognizer, map_.semantic, descriptors, frame.detections);
     const auto& occluded = query.inference.inference.occluded;
     if (occluded.empty()) return {};
-    const std::vector<semantic::ObservedObject> observed = semantic::ObserveObjects(
-        frame.detections, inputs_.camera, map_.prelocalizer.options().min_score);
     const std::vector<Eigen::Vector2d> points =
         map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
     const std::vector<int> neighbours = {occluded.front().upstream, occluded.front().downstream};
     std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.Localize(
-        observed, [&](const Pose2& pose) { return LaserFit(map_.matcher, points, pose); },
+        observed, [&](const Pose2& pose) { return LaserFit(map_.localization, points, pose); },
         &neighbours);
     ++trace->hidden_object_prelocalizations;
     if (!candidates.empty() && !trace->prelocalization) {
@@ -138,9 +165,10 @@ class MethodRun {
       // particles, each later one renews the prior; between frames the prior moves with the
       // odometry (the robot turns between frames, the prior's heading must follow).
       if (frame) {
-        auto candidates = PreLocalize(scan, *frame, trace);
+        const std::vector<semantic::ObservedObject> observed = Observe(scan, *frame);
+        auto candidates = PreLocalize(scan, observed, trace);
         if (candidates.empty() && method_ == "semantic-amcl-bow") {
-          candidates = PreLocalizeHidden(scan, *frame, trace);
+          candidates = PreLocalizeHidden(scan, *frame, observed, trace);
         }
         if (!candidates.empty()) {
           prior_ = ToHypotheses(candidates);
@@ -175,13 +203,29 @@ class MethodRun {
         start_odometry_ = scan.odometry;
       }
       last_heading_ = scan.odometry.theta;
-      if (method_ == "scanmatch-global" || turned_ >= 2.0 * M_PI) {
+      if (method_ == "scanmatch-global") {
         result = map_.matcher.RelocalizeGlobal(scan.scan, scan.LaserOffset());
       } else {
-        if (!frame) return 0;
-        const auto candidates = PreLocalize(scan, *frame, trace);
-        if (candidates.empty()) return 0;
-        result = map_.matcher.Relocalize(scan.scan, scan.LaserOffset(), ToHypotheses(candidates));
+        std::vector<semantic::PoseCandidate> candidates;
+        std::vector<semantic::ObservedObject> observed;
+        if (frame) {
+          observed = Observe(scan, *frame);
+          candidates = PreLocalize(scan, observed, trace);
+        }
+        const bool full_turn = turned_ >= 2.0 * M_PI;
+        if (candidates.empty() && full_turn && map_.method.single_object && !observed.empty() &&
+            !single_object_tried_) {
+          // Once: the circles give many windows, and a turn's objects are all remembered.
+          single_object_tried_ = true;
+          candidates = PreLocalizeSingle(scan, observed, trace);
+        }
+        if (!candidates.empty()) {
+          result = map_.matcher.Relocalize(scan.scan, scan.LaserOffset(), ToHypotheses(candidates));
+        } else if (full_turn) {
+          result = map_.matcher.RelocalizeGlobal(scan.scan, scan.LaserOffset());
+        } else {
+          return 0;
+        }
       }
       if (!result.success) return 1;
       amcl_.InitializePose(result.pose, kTrackingCovariance);
@@ -219,6 +263,8 @@ class MethodRun {
   double last_heading_ = 0.0;
   double turned_ = 0.0;  // radians turned (odometry) before a scan matcher found the robot
   bool tracking_ = false;
+  semantic::ObservationMemory memory_{map_.method.memory};
+  bool single_object_tried_ = false;
   // The latest pre-localization and the odometry when it was made.
   std::optional<std::vector<localization::PoseHypothesis>> prior_;
   Pose2 prior_odometry_;

@@ -13,6 +13,7 @@
 #include "localization/scan_match_relocalizer.h"
 #include "mapping/map_io.h"
 #include "semantic/keyframe_recognizer.h"
+#include "semantic/observation_memory.h"
 #include "semantic/prelocalization.h"
 #include "semantic/semantic_map.h"
 #include "sensors/camera.h"
@@ -31,13 +32,27 @@
 //                       finds the most similar keyframe, names the object hidden now and
 //                       pre-localizes from its two chain neighbours (seed 000 §3.1 steps 3–4)
 //   semantic-scanmatch  the hypotheses bound the window of branch-and-bound + Ceres (seed 001);
-//                       after a full turn without two objects in view, the whole map
+//                       after a full turn without two objects in view, windows around
+//                       single-object hypotheses, then the whole map
 //   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
-// After a scan matcher has found the robot, AMCL tracks it from there.
+// The semantic methods pre-localize from every object seen during the last turn (see
+// semantic::ObservationMemory). After a scan matcher has found the robot, AMCL tracks it.
 namespace semchain::eval {
 
 const std::vector<std::string>& RelocMethodNames();
 bool IsRelocMethod(const std::string& name);
+
+// How the semantic methods use what the camera saw.
+struct RelocMethodOptions {
+  // Pre-localize from every object seen during the turn (carried by odometry into the current
+  // frame), not only from the current frame's.
+  bool observation_memory = true;
+  semantic::ObservationMemoryOptions memory;
+  // semantic-scanmatch: after a full turn without two objects forming a mapped pair, search
+  // windows around single-object hypotheses (circles around the mapped objects of a seen class)
+  // before the whole map.
+  bool single_object = true;
+};
 
 // Everything a method may use about the environment, built once per map.
 struct RelocMap {
@@ -52,6 +67,7 @@ struct RelocMap {
   localization::LocalizationMap localization;
   semantic::PreLocalizer prelocalizer;
   localization::ScanMatchRelocalizer matcher;
+  RelocMethodOptions method;
   // The keyframes of the mapping run with their vocabulary (semantic-amcl-bow); may be null.
   std::shared_ptr<const semantic::KeyframeRecognizer> recognizer;
 };
@@ -72,6 +88,7 @@ struct RelocTrace {
   std::optional<Pose2> prelocalization;         // the first best hypothesis, when there was one
   int prelocalization_scan = -1;                // the scan it was made at
   int prelocalizations = 0;                     // times pre-localization was run with ≥ 2 objects
+  int single_object_prelocalizations = 0;       // ... with single-object hypotheses
   int hidden_object_prelocalizations = 0;       // ... from a hidden object's neighbours (BoW)
 };
 

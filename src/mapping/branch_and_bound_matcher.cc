@@ -107,7 +107,10 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
   BranchAndBoundResult result;
   if (points.empty()) return result;
   const Discretization d = Discretize(points, window);
-  const int depth = stack_.max_depth();
+  // Roots no larger than the window: a root covering far more than the window has a loose
+  // bound (the best value over cells never searched) and only adds levels that cannot prune.
+  int depth = 0;
+  while (depth < stack_.max_depth() && (1 << depth) < d.max_x - d.min_x + 1) ++depth;
   const double normalizer = 255.0 * static_cast<double>(points.size());
   const auto score_all = [&](std::vector<Candidate>& candidates, int height) {
     const PrecomputationGrid& grid = stack_.Get(height);

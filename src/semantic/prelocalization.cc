@@ -1,5 +1,6 @@
 #include "semantic/prelocalization.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -199,9 +200,12 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
     return Eigen::Vector2d(s.surface + behind * Unit(s.surface));
   };
   Eigen::Vector2d points[2];
+  // Range errors grow with range: far circles may miss each other by more.
+  const double slack =
+      options_.circle_slack + options_.circle_slack_per_metre * (si.range + sj.range);
   const int count = IntersectCircles(
       oa.center, centre_in_robot(si, MeanCenterBehindSurface(oa)).norm(), ob.center,
-      centre_in_robot(sj, MeanCenterBehindSurface(ob)).norm(), options_.circle_slack, points);
+      centre_in_robot(sj, MeanCenterBehindSurface(ob)).norm(), slack, points);
   for (int k = 0; k < count; ++k) {
     // Refine with the depth behind the surface seen from this position (a fixed point: the
     // depth depends on the direction, the direction on the position).
@@ -212,8 +216,7 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
       pi = centre_in_robot(si, CenterBehindSurface(oa, Unit(x - oa.center)));
       pj = centre_in_robot(sj, CenterBehindSurface(ob, Unit(x - ob.center)));
       Eigen::Vector2d refined[2];
-      const int n = IntersectCircles(oa.center, pi.norm(), ob.center, pj.norm(),
-                                     options_.circle_slack, refined);
+      const int n = IntersectCircles(oa.center, pi.norm(), ob.center, pj.norm(), slack, refined);
       if (n == 0) {
         lost = true;
         break;
@@ -224,12 +227,26 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
     // The heading each bearing gives; the mirror solution disagrees.
     const Eigen::Vector2d to_a = oa.center - x;
     const Eigen::Vector2d to_b = ob.center - x;
+    const auto pi_bearing = [](const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); };
     const double theta_a = std::atan2(to_a.y(), to_a.x()) - std::atan2(pi.y(), pi.x());
     const double theta_b = std::atan2(to_b.y(), to_b.x()) - std::atan2(pj.y(), pj.x());
-    if (std::abs(NormalizeAngle(theta_a - theta_b)) > options_.heading_agreement) continue;
-    if (!InFreeSpace(x)) continue;
     PoseCandidate candidate;
     candidate.pose = Pose2(x.x(), x.y(), CircularMean(theta_a, theta_b));
+    if (options_.refine) {
+      // Ranges and bearings together; the bearings must then agree at the refined pose.
+      candidate.matches = {{i, oa.id}, {j, ob.id}};
+      Refine(observed, &candidate);
+      candidate.matches.clear();
+      const Pose2& p = candidate.pose;
+      const double refined_a =
+          std::atan2(oa.center.y() - p.y, oa.center.x() - p.x) - pi_bearing(pi);
+      const double refined_b =
+          std::atan2(ob.center.y() - p.y, ob.center.x() - p.x) - pi_bearing(pj);
+      if (std::abs(NormalizeAngle(refined_a - refined_b)) > options_.heading_agreement) continue;
+    } else if (std::abs(NormalizeAngle(theta_a - theta_b)) > options_.heading_agreement) {
+      continue;
+    }
+    if (!InFreeSpace(candidate.pose.translation())) continue;
     const double sigma =
         options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
     candidate.covariance =
@@ -290,15 +307,113 @@ std::vector<PoseCandidate> PreLocalizer::Localize(
       }
     }
   }
-  for (PoseCandidate& candidate : candidates) {
+  Rate(observed, laser_score, options_.min_laser_score, &candidates);
+  return BestDistinct(std::move(candidates));
+}
+
+std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
+    const std::vector<ObservedObject>& observed,
+    const std::function<double(const Pose2&)>& laser_score) const {
+  std::vector<PoseCandidate> candidates;
+  if (!laser_score) return candidates;
+  std::vector<const ObservedObject*> nearest;
+  for (const ObservedObject& s : observed) nearest.push_back(&s);
+  std::sort(nearest.begin(), nearest.end(),
+            [](const ObservedObject* x, const ObservedObject* y) { return x->range < y->range; });
+  if (static_cast<int>(nearest.size()) > options_.max_single_objects) {
+    nearest.resize(static_cast<std::size_t>(options_.max_single_objects));
+  }
+  for (const ObservedObject* s : nearest) {
+    const Eigen::Vector2d ray = Unit(s->surface);
+    for (const SemanticObject& object : objects_) {
+      if (object.class_name != s->class_name) continue;
+      const double radius = (s->surface + MeanCenterBehindSurface(object) * ray).norm();
+      const int samples = std::max(
+          8, static_cast<int>(std::ceil(2.0 * M_PI * radius / options_.single_object_step)));
+      for (int k = 0; k < samples; ++k) {
+        const double phi = 2.0 * M_PI * k / samples;
+        const Eigen::Vector2d outward(std::cos(phi), std::sin(phi));
+        // The centre lies behind the surface seen from this side by the depth in this direction.
+        const double range = (s->surface + CenterBehindSurface(object, outward) * ray).norm();
+        const Eigen::Vector2d x = object.center + range * outward;
+        if (!InFreeSpace(x)) continue;
+        PoseCandidate candidate;
+        candidate.pose = Pose2(x.x(), x.y(), std::atan2(-outward.y(), -outward.x()) - s->bearing);
+        const double sigma = options_.position_std_base +
+                             options_.position_std_per_metre * s->range +
+                             0.5 * options_.single_object_step;
+        candidate.covariance = Eigen::Vector3d(sigma * sigma, sigma * sigma,
+                                               options_.heading_std * options_.heading_std)
+                                   .asDiagonal();
+        candidates.push_back(candidate);
+      }
+    }
+  }
+  Rate(observed, laser_score, options_.single_object_min_laser_score, &candidates);
+  return BestDistinct(std::move(candidates));
+}
+
+void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
+                          PoseCandidate* candidate) const {
+  if (candidate->matches.size() < 2) return;
+  // The rigid transform that best aligns the centres the camera implies (robot frame) with the
+  // mapped centres (world), in closed form (least squares, as Umeyama without scaling).
+  std::map<int, int> index_of_id;
+  for (std::size_t o = 0; o < objects_.size(); ++o)
+    index_of_id[objects_[o].id] = static_cast<int>(o);
+  std::vector<Eigen::Vector2d> seen;
+  std::vector<Eigen::Vector2d> mapped;
+  for (const auto& [k, id] : candidate->matches) {
+    const ObservedObject& s = observed[static_cast<std::size_t>(k)];
+    const SemanticObject& object = objects_[static_cast<std::size_t>(index_of_id[id])];
+    const Eigen::Vector2d world_ray = Unit(object.center - candidate->pose.translation());
+    seen.push_back(s.surface + CenterBehindSurface(object, -world_ray) * Unit(s.surface));
+    mapped.push_back(object.center);
+  }
+  Eigen::Vector2d seen_mean = Eigen::Vector2d::Zero();
+  Eigen::Vector2d mapped_mean = Eigen::Vector2d::Zero();
+  for (std::size_t m = 0; m < seen.size(); ++m) {
+    seen_mean += seen[m] / static_cast<double>(seen.size());
+    mapped_mean += mapped[m] / static_cast<double>(seen.size());
+  }
+  // In 2D the best rotation is the angle of Σ (cross, dot) of the centred pairs.
+  double cross = 0.0;
+  double dot = 0.0;
+  for (std::size_t m = 0; m < seen.size(); ++m) {
+    const Eigen::Vector2d a = seen[m] - seen_mean;
+    const Eigen::Vector2d b = mapped[m] - mapped_mean;
+    cross += a.x() * b.y() - a.y() * b.x();
+    dot += a.dot(b);
+  }
+  const double theta = std::atan2(cross, dot);
+  const Eigen::Vector2d t = mapped_mean - Eigen::Rotation2Dd(theta) * seen_mean;
+  const Pose2 refined(t.x(), t.y(), theta);
+  // An alignment that lands outside free space or far away is not trusted.
+  if (InFreeSpace(refined.translation()) &&
+      (refined.translation() - candidate->pose.translation()).norm() < 1.0) {
+    candidate->pose = refined;
+  }
+}
+
+void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
+                        const std::function<double(const Pose2&)>& laser_score,
+                        double min_laser_score, std::vector<PoseCandidate>* candidates) const {
+  for (PoseCandidate& candidate : *candidates) {
     candidate.agreeing = CountAgreeing(observed, &candidate);
+    if (options_.refine) {
+      Refine(observed, &candidate);
+      candidate.agreeing = CountAgreeing(observed, &candidate);
+    }
     if (laser_score) candidate.laser_score = laser_score(candidate.pose);
   }
   if (laser_score) {
-    std::erase_if(candidates, [this](const PoseCandidate& c) {
-      return c.laser_score < options_.min_laser_score;
+    std::erase_if(*candidates, [min_laser_score](const PoseCandidate& c) {
+      return c.laser_score < min_laser_score;
     });
   }
+}
+
+std::vector<PoseCandidate> PreLocalizer::BestDistinct(std::vector<PoseCandidate> candidates) const {
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const PoseCandidate& x, const PoseCandidate& y) {
                      if (x.agreeing != y.agreeing) return x.agreeing > y.agreeing;

@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,9 +27,10 @@ struct PreLocalizationOptions {
   // α of seed 001: a mapped pair at distance D explains an observed distance d when
   // (1 − α) D < d < (1 + α) D.
   double distance_tolerance = 0.15;
-  // Circles that miss each other by up to this (metres, range noise) still give their
-  // tangent point.
+  // Circles that miss each other by up to this (metres, range noise) plus 'circle_slack_per_metre'
+  // × the two ranges still give their tangent point.
   double circle_slack = 0.15;
+  double circle_slack_per_metre = 0.02;
   // The two bearings of a pair must give headings within this (radians).
   double heading_agreement = 0.2;
   // Another object in view agrees with a hypothesis when a mapped object of its class lies
@@ -52,6 +54,16 @@ struct PreLocalizationOptions {
   // With a laser score given, hypotheses scoring below this are dropped: a confused or
   // spurious detection can explain a pair, the laser then says the place is wrong.
   double min_laser_score = 0.3;
+  // Each hypothesis is refined by aligning the object centres the camera implies with the mapped
+  // ones (least squares over every object it explains): two objects seen nearly opposite each
+  // other fix the position across the line between them, where the circles barely meet.
+  bool refine = true;
+  // Single-object hypotheses (LocalizeSingle): points on each circle this far apart (metres),
+  // the laser fit they need (higher than min_laser_score: nothing else supports them), and how
+  // many of the nearest observations are tried.
+  double single_object_step = 0.1;
+  double single_object_min_laser_score = 0.5;
+  int max_single_objects = 3;
 
   bool Validate(std::string* error) const;
 };
@@ -64,6 +76,7 @@ struct ObservedObject {
   double range = 0.0;
   double bearing = 0.0;
   int detection = -1;  // index in the frame's detections
+  int frames_ago = 0;  // 0: the current frame (see ObservationMemory)
 };
 
 // The usable detections of a frame (score, depth) as observed objects.
@@ -101,6 +114,15 @@ class PreLocalizer {
                                       const std::function<double(const Pose2&)>& laser_score = {},
                                       const std::vector<int>* only = nullptr) const;
 
+  // Hypotheses from single objects, for when no two objects in view form a mapped pair (a
+  // corridor where the objects are far apart): the robot lies on the circle around each mapped
+  // object of the observed class, at the measured range, facing it at the measured bearing. Only
+  // the laser tells the poses on the circles apart, so 'laser_score' is required; the nearest
+  // 'max_single_objects' observations are used, best laser fit first.
+  std::vector<PoseCandidate> LocalizeSingle(
+      const std::vector<ObservedObject>& observed,
+      const std::function<double(const Pose2&)>& laser_score) const;
+
   // The mapped pairs of classes (a, b) whose distance D satisfies the tolerance for an
   // observed distance d (seed 001 retrieval): (object id a, object id b, D).
   std::vector<std::tuple<int, int, double>> RetrievePairs(const std::string& class_a,
@@ -119,7 +141,15 @@ class PreLocalizer {
   void AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j, int a, int b,
                          std::vector<PoseCandidate>* out) const;
   bool InFreeSpace(const Eigen::Vector2d& point) const;
+  // Merges coinciding candidates (the best first) and keeps max_hypotheses.
+  std::vector<PoseCandidate> BestDistinct(std::vector<PoseCandidate> candidates) const;
   int CountAgreeing(const std::vector<ObservedObject>& observed, PoseCandidate* candidate) const;
+  // Least-squares pose over the candidate's matches (see PreLocalizationOptions::refine).
+  void Refine(const std::vector<ObservedObject>& observed, PoseCandidate* candidate) const;
+  // Agreement, refinement and laser score of every candidate; drops what the laser rules out.
+  void Rate(const std::vector<ObservedObject>& observed,
+            const std::function<double(const Pose2&)>& laser_score, double min_laser_score,
+            std::vector<PoseCandidate>* candidates) const;
 
   std::vector<SemanticObject> objects_;
   std::map<std::pair<std::string, std::string>, std::vector<IndexedPair>> pairs_;

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/angles.h"
+
 namespace semchain::semantic {
 namespace {
 
@@ -136,6 +138,43 @@ TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
       });
   ASSERT_EQ(rated.size(), 1u);
   EXPECT_NEAR((rated[0].pose.translation() - truth.translation()).norm(), 0.0, 1e-4);
+}
+
+TEST(PreLocalizerTest, SingleObjectCircleAndLaserGiveThePose) {
+  // One bucket in view; two buckets mapped. The robot is somewhere on a circle around either
+  // (the truth lies on both: it is as far from each, only the heading differs); a laser score
+  // peaked at the true pose (as a scan would be) picks the right place on the right circle.
+  SemanticMap map;
+  map.objects = {Square(0, "bucket", 3.0, 3.0, 0.15), Square(1, "bucket", 7.0, 3.0, 0.15)};
+  PreLocalizationOptions options;
+  const PreLocalizer localizer(map, FreeRoom(), options);
+  const Pose2 truth(5.0, 2.0, 0.3);
+  const std::vector<ObservedObject> observed = {See(truth, map.objects[1])};
+  const auto laser = [&truth](const Pose2& pose) {
+    const double d = (pose.translation() - truth.translation()).norm();
+    const double a = NormalizeAngle(pose.theta - truth.theta);
+    return std::exp(-d * d / (2.0 * 0.1 * 0.1) - a * a / (2.0 * 0.1 * 0.1));
+  };
+  const std::vector<PoseCandidate> hypotheses = localizer.LocalizeSingle(observed, laser);
+  ASSERT_FALSE(hypotheses.empty());
+  // The best sample lies within half a step of the truth on the circle, facing as the bearing
+  // says (the heading follows the position along the circle).
+  EXPECT_LT((hypotheses[0].pose.translation() - truth.translation()).norm(),
+            0.5 * options.single_object_step + 1e-6);
+  EXPECT_NEAR(NormalizeAngle(hypotheses[0].pose.theta - truth.theta), 0.0, 0.05);
+  // Every hypothesis sees the bucket where it was seen: range and bearing hold.
+  for (const PoseCandidate& h : hypotheses) {
+    const Eigen::Vector2d surface = h.pose * observed[0].surface;
+    const double to_centre = (surface - h.pose.translation())
+                                 .normalized()
+                                 .dot((map.objects[0].center - h.pose.translation()).normalized());
+    const double to_other = (surface - h.pose.translation())
+                                .normalized()
+                                .dot((map.objects[1].center - h.pose.translation()).normalized());
+    EXPECT_GT(std::max(to_centre, to_other), 0.999);
+  }
+  // Without a laser score nothing tells the circle's points apart: no hypotheses.
+  EXPECT_TRUE(localizer.LocalizeSingle(observed, {}).empty());
 }
 
 }  // namespace
