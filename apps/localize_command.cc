@@ -1,7 +1,7 @@
-// semchain localize --map MAP --run RUN --method METHOD [--out R.json] [--seed S]
+// semchain localize --map MAP --run RUN --method METHOD [--out R.json] [--png P.png] [--seed S]
 // Runs one relocalization method (DESIGN.md §4) over a recorded run (its scans, odometry and
 // camera detections) on a map with its semantic map; prints (and writes) the result as JSON,
-// scored against RUN/truth.txt when the run has one.
+// scored against RUN/truth.txt when the run has one, and draws it (particles converging).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +10,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/reloc_drawing.h"
 #include "core/angles.h"
 #include "core/atomic_file.h"
 #include "eval/reloc_methods.h"
@@ -33,6 +34,7 @@ struct LocalizeArgs {
   std::string run;
   std::string method;
   std::string out;
+  std::string png;
   std::string vocab;  // semantic-amcl-bow
   int seed = 1;
 };
@@ -77,6 +79,8 @@ Status RunLocalize(const LocalizeArgs& args) {
   eval::RelocRunInputs inputs;
   inputs.scans = std::move(*scans);
   inputs.seed = static_cast<std::uint64_t>(args.seed);
+  // Every update is kept: the picture chooses which to draw once it knows how many there were.
+  if (!args.png.empty()) inputs.record_particles_every = 1;
   const bool semantic_method = args.method.rfind("semantic", 0) == 0;
   if (semantic_method) {
     Result<CameraInfo> camera = ReadCameraYaml(run / "camera.yaml");
@@ -121,14 +125,24 @@ Status RunLocalize(const LocalizeArgs& args) {
     result["prelocalization"] = {trace.prelocalization->x, trace.prelocalization->y,
                                  trace.prelocalization->theta};
   }
+  std::vector<StampedPose> truth;
   if (fs::exists(run / "truth.txt")) {
-    Result<std::vector<StampedPose>> truth = ReadTrajectory(run / "truth.txt");
-    if (!truth.ok()) return truth.status();
-    if (last && !truth->empty()) {
-      const Pose2& t = truth->back().pose;
+    Result<std::vector<StampedPose>> read = ReadTrajectory(run / "truth.txt");
+    if (!read.ok()) return read.status();
+    truth = std::move(*read);
+    if (last && !truth.empty()) {
+      const Pose2& t = truth.back().pose;
       result["error_m"] = (last->translation() - t.translation()).norm();
       result["error_deg"] = std::abs(NormalizeAngle(last->theta - t.theta)) * 180.0 / M_PI;
     }
+  }
+  if (!args.png.empty()) {
+    RelocPictureOptions picture;
+    picture.method = args.method;
+    for (const StampedScan& scan : inputs.scans) picture.scan_times.push_back(scan.scan.timestamp);
+    for (const StampedPose& pose : truth) picture.truth.push_back(pose.pose);
+    SEMCHAIN_RETURN_IF_ERROR(
+        WriteRelocalizationPng(*map, *semantic, trace, picture, fs::path(args.png)));
   }
   const std::string text = result.dump(2) + "\n";
   if (!args.out.empty()) SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(args.out, text));
@@ -150,6 +164,9 @@ void AddLocalizeCommand(CLI::App& app, int& exit_code) {
       ->required();
   command->add_option("--method", args->method, "Relocalization method")->required();
   command->add_option("--out", args->out, "Also write the JSON here");
+  command->add_option("--png", args->png,
+                      "Draw the relocalization here: map, objects, particle clouds over time "
+                      "(light = early), truth and final estimate");
   command->add_option("--vocab", args->vocab,
                       "Vocabulary (semchain vocab train) for semantic-amcl-bow; the keyframes are "
                       "MAP/keyframes.json");

@@ -1,9 +1,11 @@
-// semchain simulate --world W.yaml --out RUN [--seed N] [--route mapping|trial|FILE] [--no-frames]
+// semchain simulate --world W.yaml --out RUN [--seed N] [--route mapping|trial|FILE]
+//                   [--start X,Y,THETA] [--no-frames]
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/command.h"
 #include "core/atomic_file.h"
@@ -19,6 +21,7 @@ struct SimulateArgs {
   std::string out;
   std::uint64_t seed = 0;
   std::string route = "mapping";
+  std::vector<double> start;  // x, y, θ; empty: the world's robot.start
   bool no_frames = false;
 };
 
@@ -51,6 +54,7 @@ Status RunSimulate(const SimulateArgs& args) {
   sim::SimulationOptions options;
   options.seed = args.seed;
   options.route = *route;
+  if (!args.start.empty()) options.start = Pose2(args.start[0], args.start[1], args.start[2]);
   options.write_frames = !args.no_frames;
   options.world_yaml = std::move(*world_yaml);
   SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(*world, options, args.out));
@@ -80,6 +84,12 @@ void AddSimulateCommand(CLI::App& app, int& exit_code) {
                    "mapping (the world's mapping_route), trial (rotate in place, then drive "
                    "ahead) or a file of waypoints (YAML list of [x, y], or 'x y' per line)")
       ->capture_default_str();
+  command
+      ->add_option("--start", args->start,
+                   "Start pose X,Y,THETA (metres, radians; the world's robot.start by default), "
+                   "e.g. a trial in the trial region")
+      ->expected(3)
+      ->delimiter(',');
   command->add_flag("--no-frames", args->no_frames, "Write no frames and no detections");
   command->callback([args, &exit_code] {
     const Status status = RunSimulate(*args);

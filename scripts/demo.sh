@@ -2,8 +2,8 @@
 # The end-to-end demo on a bundled world: simulate a mapping run, build the map with SLAM and
 # fuse the depth camera into it, score it against the simulator's truth, put the detected objects
 # on the map and link them into semantic chains, plan a route S -> P1 -> P2 on the fused map,
-# relocalize from a few random starts with every method, and draw world, run, map (with objects
-# and chains) and route as PNG.
+# relocalize from a few random starts with every method (a table), draw world, run, map (with
+# objects and chains) and route as PNG, and one relocalization's particles converging.
 #   scripts/demo.sh [OUTPUT_DIR [WORLD.yaml]]   (defaults: demo/, worlds/two_similar_rooms.yaml)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -37,5 +37,15 @@ step "plan: ${points[0]} -> ${points[1]} -> ${points[2]} on the fused map"
 step "bench reloc: 3 relocalization trials in $world, every method (table in $out/reloc/results.md)"
 "$semchain" bench reloc --world "$world" --trials 3 --seed 1 \
   --methods amcl,semantic-amcl,semantic-scanmatch,scanmatch-global --out "$out/reloc"
+# One trial drawn: the robot put down where the mapping run was a third of the way along (free
+# space on every bundled world), turning in place and driving off; its particles converging.
+start=$(awk '$1 !~ /^#/ && NF == 4 { p[n++] = $2 "," $3 "," $4 } END { print p[int(n / 3)] }' \
+  "$out/run/truth.txt")
+step "simulate a trial from $start, then localize it with semantic-amcl and amcl (PNGs)"
+"$semchain" simulate --world "$world" --out "$out/trial" --seed 2 --route trial --start "$start"
+for method in semantic-amcl amcl; do
+  "$semchain" localize --map "$out/map" --run "$out/trial" --method "$method" \
+    --out "$out/reloc_${method//-/_}.json" --png "$out/reloc_${method//-/_}.png"
+done
 step "done: pictures in $out"
 ls -1 "$out"/*.png

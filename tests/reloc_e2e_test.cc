@@ -1,12 +1,22 @@
 // `semchain bench reloc` in small (issue 5): map two_similar_rooms from a simulated mapping run
 // (SLAM + semantic mapping), then relocalize from a few random starts in room A. The semantic
 // methods must find the robot in every trial, and the first pre-localization must be close.
+// Then the particle snapshots of `localize --png` on one trial, on maps made from the world's
+// truth (quick): recording them changes nothing, and the cloud they show converges.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
+#include "core/angles.h"
 #include "eval/reloc_benchmark.h"
+#include "semantic/semantic_chain.h"
+#include "sensors/detection.h"
+#include "sim/prism_silhouette.h"
+#include "sim/scene.h"
+#include "sim/world.h"
 
 namespace semchain {
 namespace {
@@ -37,6 +47,133 @@ TEST(RelocBenchmarkTest, SemanticMethodsRelocalizeInLookAlikeRooms) {
   EXPECT_LE(amcl.prelocalization_error_y_m, 0.15);
   // The scan matcher searches only around the hypotheses: about one match per trial.
   EXPECT_LE(result->methods.at("semantic-scanmatch").mean_iterations, 2.0);
+}
+
+// The maps a perfect SLAM and semantic mapping would make of 'world' (so that this test does
+// not spend its time building them): cells within half a cell of a surface occupied, the rest
+// of the walls' extent free, a margin unknown; the objects' true footprints, chained.
+struct TruthMaps {
+  mapping::MapImage occupancy;
+  semantic::SemanticMap semantic;
+};
+
+TruthMaps MapsFromTruth(const sim::World& world) {
+  constexpr double kResolution = 0.05, kMargin = 0.25;
+  Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
+  for (const auto& wall : world.walls) {
+    for (const Eigen::Vector2d& p : wall) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  }
+  TruthMaps maps;
+  mapping::MapImage& map = maps.occupancy;
+  map.resolution = kResolution;
+  map.origin << low.x() - kMargin, low.y() - kMargin, 0.0;
+  map.width = static_cast<int>(std::ceil((high.x() - low.x() + 2 * kMargin) / kResolution));
+  map.height = static_cast<int>(std::ceil((high.y() - low.y() + 2 * kMargin) / kResolution));
+  const sim::Scene scene(world);
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      const Eigen::Vector2d p =
+          map.origin.head<2>() + kResolution * Eigen::Vector2d(x + 0.5, y + 0.5);
+      const bool inside = (p.array() >= low.array()).all() && (p.array() <= high.array()).all();
+      map.cells.push_back(scene.IsOccupied(p, 0.5 * kResolution) ? 100 : inside ? 0 : -1);
+    }
+  }
+  semantic::SemanticMap& objects = maps.semantic;
+  objects.classes = world.classes.empty() ? DefaultClassNames() : world.classes;
+  for (const sim::Solid& solid : world.objects) {
+    objects.objects.push_back({static_cast<int>(objects.objects.size()), solid.class_name,
+                               solid.footprint.center, sim::FootprintOutline(solid.footprint), 10,
+                               0.9});
+  }
+  semantic::BuildChainsAndNeighbours(map, semantic::ChainOptions(), {}, &objects);
+  return maps;
+}
+
+// Weighted RMS distance of the particles from their weighted mean, metres.
+double Spread(const eval::ParticleSnapshot& snapshot) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  double total = 0.0;
+  for (std::size_t i = 0; i < snapshot.poses.size(); ++i) {
+    mean += snapshot.weights[i] * snapshot.poses[i].translation();
+    total += snapshot.weights[i];
+  }
+  mean /= total;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < snapshot.poses.size(); ++i) {
+    sum += snapshot.weights[i] * (snapshot.poses[i].translation() - mean).squaredNorm();
+  }
+  return std::sqrt(sum / total);
+}
+
+// Particle snapshots (localize --png) only look: the trace is the same with and without them;
+// and on a trial where semantic-amcl finds the robot, its cloud shrinks from the first
+// snapshot (global initialisation) to the last.
+TEST(RelocMethodsTest, ParticleSnapshotsChangeNothingAndShrink) {
+  const fs::path world_path = fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / "two_similar_rooms.yaml";
+  const Result<sim::World> world = sim::LoadWorld(world_path);
+  ASSERT_TRUE(world.ok()) << world.status().message();
+  const fs::path work =
+      fs::temp_directory_path() / ("semchain_reloc_snapshots_" + std::to_string(::getpid()));
+  eval::RelocBenchmarkOptions options;
+  options.trial_turns = 1.0;  // a short trial: one turn in place, then up to 1 m ahead
+  const Result<eval::RelocTrialRun> trial =
+      eval::SimulateRelocTrial(*world, Pose2(2.1, 2.4, 0.0), 11, options, work);
+  fs::remove_all(work);
+  ASSERT_TRUE(trial.ok()) << trial.status().message();
+  const TruthMaps maps = MapsFromTruth(*world);
+  ASSERT_FALSE(maps.semantic.chains.empty());
+  const eval::RelocMap map(maps.occupancy, maps.semantic, localization::AmclOptions(),
+                           semantic::PreLocalizationOptions(),
+                           localization::ScanMatchRelocalizerOptions());
+
+  eval::RelocRunInputs inputs = trial->inputs;
+  const eval::RelocTrace plain = eval::RunRelocMethod("semantic-amcl", map, inputs);
+  inputs.record_particles_every = 4;
+  inputs.record_particles_max = 500;
+  const eval::RelocTrace recorded = eval::RunRelocMethod("semantic-amcl", map, inputs);
+
+  EXPECT_TRUE(plain.particle_snapshots.empty());
+  ASSERT_EQ(plain.estimates.size(), recorded.estimates.size());
+  for (std::size_t i = 0; i < plain.estimates.size(); ++i) {
+    ASSERT_EQ(plain.estimates[i].has_value(), recorded.estimates[i].has_value()) << i;
+    if (!plain.estimates[i]) continue;
+    EXPECT_EQ(plain.estimates[i]->x, recorded.estimates[i]->x) << i;
+    EXPECT_EQ(plain.estimates[i]->y, recorded.estimates[i]->y) << i;
+    EXPECT_EQ(plain.estimates[i]->theta, recorded.estimates[i]->theta) << i;
+  }
+  EXPECT_EQ(plain.iterations, recorded.iterations);
+  EXPECT_EQ(plain.prelocalization_scan, recorded.prelocalization_scan);
+  EXPECT_EQ(plain.prelocalizations, recorded.prelocalizations);
+
+  // The method succeeds on this trial.
+  ASSERT_TRUE(recorded.estimates.back().has_value());
+  const Pose2& truth = trial->truth.back().pose;
+  EXPECT_LE((recorded.estimates.back()->translation() - truth.translation()).norm(), 0.25);
+  EXPECT_LE(std::abs(NormalizeAngle(recorded.estimates.back()->theta - truth.theta)), 0.1745);
+
+  const std::vector<eval::ParticleSnapshot>& snapshots = recorded.particle_snapshots;
+  ASSERT_GE(snapshots.size(), 3u);
+  for (std::size_t i = 0; i < snapshots.size(); ++i) {
+    EXPECT_LE(snapshots[i].poses.size(), 500u);
+    EXPECT_EQ(snapshots[i].poses.size(), snapshots[i].weights.size());
+    if (i > 0) {
+      EXPECT_LT(snapshots[i - 1].scan, snapshots[i].scan);
+    }
+  }
+  // One snapshot follows the seeding by pre-localization, and the last is the last update.
+  ASSERT_GE(recorded.prelocalization_scan, 0);
+  EXPECT_TRUE(std::any_of(snapshots.begin(), snapshots.end(),
+                          [&](const auto& s) { return s.scan == recorded.prelocalization_scan; }));
+  // semantic-amcl counts filter updates: the last is where the count last went up.
+  const auto last_update =
+      std::find(recorded.iterations.begin(), recorded.iterations.end(), recorded.iterations.back());
+  EXPECT_EQ(snapshots.back().scan, static_cast<int>(last_update - recorded.iterations.begin()));
+  EXPECT_GT(Spread(snapshots.front()), 2.0);  // uniform over the map
+  EXPECT_LT(Spread(snapshots.back()), 0.1 * Spread(snapshots.front()));
+  EXPECT_LT(Spread(snapshots.back()), 0.3);
 }
 
 }  // namespace

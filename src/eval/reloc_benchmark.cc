@@ -151,13 +151,11 @@ Result<std::vector<Pose2>> TrialPoses(const sim::World& world, int count, double
   return poses;
 }
 
-struct TrialData {
-  RelocRunInputs inputs;
-  std::vector<StampedPose> truth;  // one per scan
-};
+}  // namespace
 
-Result<TrialData> SimulateTrial(const sim::World& world, const Pose2& start, std::uint64_t seed,
-                                const RelocBenchmarkOptions& options, const fs::path& run) {
+Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& start,
+                                         std::uint64_t seed, const RelocBenchmarkOptions& options,
+                                         const fs::path& run) {
   sim::SimulationOptions simulation;
   simulation.seed = seed;
   simulation.start = start;
@@ -166,7 +164,7 @@ Result<TrialData> SimulateTrial(const sim::World& world, const Pose2& start, std
   simulation.trial.rotation_radians = 2.0 * M_PI * options.trial_turns;
   simulation.trial.forward_distance_meters = options.trial_forward;
   SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(world, simulation, run));
-  TrialData data;
+  RelocTrialRun data;
   Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
   if (!log.ok()) return log.status();
   Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
@@ -190,6 +188,8 @@ Result<TrialData> SimulateTrial(const sim::World& world, const Pose2& start, std
   return data;
 }
 
+namespace {
+
 struct TrialOutcome {
   bool success = false;
   bool localized = false;
@@ -205,7 +205,7 @@ struct TrialOutcome {
   double prelocalization_error_rad = 0.0;
 };
 
-TrialOutcome Score(const RelocTrace& trace, const TrialData& trial,
+TrialOutcome Score(const RelocTrace& trace, const RelocTrialRun& trial,
                    const RelocBenchmarkOptions& options) {
   TrialOutcome outcome;
   const std::size_t n = trace.estimates.size();
@@ -356,8 +356,9 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   result.map_ate_m = built->ate;
   for (int k = 0; k < options.trials; ++k) {
     const fs::path run = work / ("trial_" + std::to_string(k));
-    Result<TrialData> trial = SimulateTrial(*live, (*starts)[static_cast<std::size_t>(k)],
-                                            options.seed + kTrialRunSeedOffset + k, options, run);
+    Result<RelocTrialRun> trial =
+        SimulateRelocTrial(*live, (*starts)[static_cast<std::size_t>(k)],
+                           options.seed + kTrialRunSeedOffset + k, options, run);
     if (!trial.ok()) return trial.status();
     for (const std::string& method : options.methods) {
       const RelocTrace trace = RunRelocMethod(method, map, trial->inputs);

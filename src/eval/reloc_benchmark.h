@@ -6,8 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "core/pose2.h"
 #include "core/status.h"
 #include "eval/reloc_methods.h"
+#include "io/trajectory_io.h"
+#include "sim/world.h"
 
 // `semchain bench reloc` (DESIGN.md §4, seed 000 Tables 4–5, seed 001 Fig. 13/19): the map of a
 // world is built from a simulated mapping run (SLAM and semantic mapping, not the truth); the
@@ -77,6 +80,17 @@ struct RelocBenchmarkResult {
   std::map<std::string, RelocMethodStats> methods;
   std::map<std::string, std::vector<RelocTrialRecord>> runs;
 };
+
+// One trial as the benchmark makes it: the robot put at 'start' in 'world', turning
+// options.trial_turns times and driving off up to options.trial_forward, simulated with 'seed'
+// into the directory 'run'; what the methods get, and the truth at every scan.
+struct RelocTrialRun {
+  RelocRunInputs inputs;
+  std::vector<StampedPose> truth;  // one per scan
+};
+Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& start,
+                                         std::uint64_t seed, const RelocBenchmarkOptions& options,
+                                         const std::filesystem::path& run);
 
 // 'progress' (may be empty) is called with (trials done, trials).
 Result<RelocBenchmarkResult> RunRelocBenchmark(const std::filesystem::path& world,

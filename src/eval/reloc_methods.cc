@@ -47,6 +47,20 @@ std::vector<localization::PoseHypothesis> ToHypotheses(
   return hypotheses;
 }
 
+// At most 'max_kept' of the particles, evenly strided (after resampling their order carries
+// no meaning, so a stride is a fair sample).
+ParticleSnapshot Subsample(const std::vector<localization::Particle>& particles, int max_kept) {
+  ParticleSnapshot snapshot;
+  snapshot.particles = static_cast<int>(particles.size());
+  const std::size_t kept = static_cast<std::size_t>(std::max(1, max_kept));
+  const std::size_t stride = std::max<std::size_t>(1, (particles.size() + kept - 1) / kept);
+  for (std::size_t i = 0; i < particles.size(); i += stride) {
+    snapshot.poses.push_back(particles[i].pose);
+    snapshot.weights.push_back(particles[i].weight);
+  }
+  return snapshot;
+}
+
 // The covariance of a renewed prior, relative to the pre-localization's.
 constexpr double kRenewedPriorScale = 4.0;
 
@@ -86,7 +100,9 @@ class MethodRun {
       trace.estimates.push_back(estimate_);
       trace.cpu_seconds.push_back(cpu);
       trace.iterations.push_back(iterations);
+      if (inputs_.record_particles_every > 0) RecordParticles(scan, &trace);
     }
+    if (unrecorded_) trace.particle_snapshots.push_back(std::move(*unrecorded_));
     return trace;
   }
 
@@ -155,6 +171,26 @@ class MethodRun {
       trace->prelocalization = candidates.front().pose;
     }
     return candidates;
+  }
+
+  // After a filter update, keeps the particles when RelocTrace::particle_snapshots asks for
+  // them; any other update waits in unrecorded_ in case it turns out to be the last.
+  void RecordParticles(const StampedScan& scan, RelocTrace* trace) {
+    const int updates = amcl_.counters().updates;
+    if (updates == recorded_updates_) return;
+    recorded_updates_ = updates;
+    const bool after_prelocalization = trace->prelocalization_scan >= 0 && !snapped_prelocalized_;
+    ParticleSnapshot snapshot = Subsample(amcl_.particles(), inputs_.record_particles_max);
+    snapshot.scan = static_cast<int>(trace->estimates.size()) - 1;
+    snapshot.time = scan.scan.timestamp;
+    unrecorded_.reset();
+    if (trace->particle_snapshots.empty() || after_prelocalization ||
+        updates % inputs_.record_particles_every == 0) {
+      snapped_prelocalized_ = snapped_prelocalized_ || after_prelocalization;
+      trace->particle_snapshots.push_back(std::move(snapshot));
+    } else {
+      unrecorded_ = std::move(snapshot);
+    }
   }
 
   // Processes one scan; returns the filter updates / matcher runs it took.
@@ -268,6 +304,10 @@ class MethodRun {
   // The latest pre-localization and the odometry when it was made.
   std::optional<std::vector<localization::PoseHypothesis>> prior_;
   Pose2 prior_odometry_;
+  // Particle snapshots (RelocRunInputs::record_particles_every).
+  int recorded_updates_ = 0;  // the filter's update count when last looked at
+  bool snapped_prelocalized_ = false;
+  std::optional<ParticleSnapshot> unrecorded_;
 };
 
 }  // namespace

@@ -79,6 +79,16 @@ struct RelocFrame {
   std::filesystem::path image;  // the colour image (semantic-amcl-bow)
 };
 
+// The particles of the method's AMCL after one filter update (for pictures of the filter
+// converging; see RelocRunInputs::record_particles_every).
+struct ParticleSnapshot {
+  int scan = 0;                 // index of the scan whose update it follows
+  double time = 0.0;            // that scan's timestamp, seconds
+  int particles = 0;            // the filter's particle count then (KLD-adaptive)
+  std::vector<Pose2> poses;     // an evenly strided subsample of the particles ...
+  std::vector<double> weights;  // ... and their normalised weights
+};
+
 // The pose a method gives after each scan (nothing while it has no estimate), the work it did
 // and the pre-localization it used.
 struct RelocTrace {
@@ -90,6 +100,10 @@ struct RelocTrace {
   int prelocalizations = 0;                     // times pre-localization was run with ≥ 2 objects
   int single_object_prelocalizations = 0;       // ... with single-object hypotheses
   int hidden_object_prelocalizations = 0;       // ... from a hidden object's neighbours (BoW)
+  // With RelocRunInputs::record_particles_every > 0, in time order: the first filter update,
+  // the one at prelocalization_scan or the first after it, every n-th, and the last. Scan
+  // matchers have no particles before they found the robot (AMCL tracks from there).
+  std::vector<ParticleSnapshot> particle_snapshots;
 };
 
 struct RelocRunInputs {
@@ -97,6 +111,10 @@ struct RelocRunInputs {
   std::vector<RelocFrame> frames;  // in time order
   MountedCamera camera;
   std::uint64_t seed = 1;
+  // 0: no particle snapshots (nothing is copied); n > 0: snapshots of every n-th filter update
+  // (and the ones RelocTrace::particle_snapshots names), outside the measured CPU time.
+  int record_particles_every = 0;
+  int record_particles_max = 2000;  // particles kept per snapshot, at most
 };
 
 // Runs 'method' over the scans (frames are used at the scan with the same stamp or the first
