@@ -25,6 +25,8 @@ step "eval ate: SLAM trajectory against the simulator's truth"
 "$semchain" eval ate --poses "$out/map/trajectory.txt" --truth "$out/run/truth.txt" | tee "$out/ate.json"
 step "semantic: detections + depth frames, posed by SLAM -> $out/map/semantic.json (objects, chains)"
 "$semchain" semantic --run "$out/run" --map "$out/map" --out "$out/map"
+step "vocab: the world's default bag-of-words vocabulary from the run's frames -> $out/map/vocab.bin"
+"$semchain" vocab train --run "$out/run" --out "$out/map/vocab.bin" --seed 1
 step "render the map (with its semantic objects and chains)"
 "$semchain" render "$out/map" --out "$out/map.png"
 # S, P1 and P2: where the robot was at the start, a third and two thirds of the mapping run
