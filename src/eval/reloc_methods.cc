@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "core/angles.h"
 #include "io/rgbd_frame_io.h"
@@ -108,6 +109,20 @@ class MethodRun {
   }
 
  private:
+  // Rates a pose by how well this scan fits the map there.
+  std::function<double(const Pose2&)> LaserScorer(const StampedScan& scan) const {
+    return [this, points = map_.matcher.MatchPoints(scan.scan, scan.LaserOffset())](
+               const Pose2& pose) { return LaserFit(map_.localization, points, pose); };
+  }
+
+  // The first best hypothesis of the trial is what the benchmark scores as the pre-localization.
+  static void NoteFirstHypothesis(const std::vector<semantic::PoseCandidate>& candidates,
+                                  RelocTrace* trace) {
+    if (!candidates.empty() && !trace->prelocalization) {
+      trace->prelocalization = candidates.front().pose;
+    }
+  }
+
   // Remembers a frame's objects; returns what pre-localization may use now: nothing when the
   // frame shows no object (what is remembered gave its hypotheses when it was seen).
   std::vector<semantic::ObservedObject> Observe(const StampedScan& scan, const RelocFrame& frame) {
@@ -123,28 +138,20 @@ class MethodRun {
       const StampedScan& scan, const std::vector<semantic::ObservedObject>& observed,
       RelocTrace* trace) const {
     if (observed.size() < 2) return {};
-    const std::vector<Eigen::Vector2d> points =
-        map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
-    std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.Localize(
-        observed, [&](const Pose2& pose) { return LaserFit(map_.localization, points, pose); });
+    std::vector<semantic::PoseCandidate> candidates =
+        map_.prelocalizer.Localize(observed, LaserScorer(scan));
     ++trace->prelocalizations;
-    if (!candidates.empty() && !trace->prelocalization) {
-      trace->prelocalization = candidates.front().pose;
-    }
+    NoteFirstHypothesis(candidates, trace);
     return candidates;
   }
 
   std::vector<semantic::PoseCandidate> PreLocalizeSingle(
       const StampedScan& scan, const std::vector<semantic::ObservedObject>& observed,
       RelocTrace* trace) const {
-    const std::vector<Eigen::Vector2d> points =
-        map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
-    std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.LocalizeSingle(
-        observed, [&](const Pose2& pose) { return LaserFit(map_.localization, points, pose); });
+    std::vector<semantic::PoseCandidate> candidates =
+        map_.prelocalizer.LocalizeSingle(observed, LaserScorer(scan));
     ++trace->single_object_prelocalizations;
-    if (!candidates.empty() && !trace->prelocalization) {
-      trace->prelocalization = candidates.front().pose;
-    }
+    NoteFirstHypothesis(candidates, trace);
     return candidates;
   }
 
@@ -161,16 +168,11 @@ class MethodRun {
         *map_.recognizer, map_.semantic, descriptors, frame.detections);
     const auto& occluded = query.inference.inference.occluded;
     if (occluded.empty()) return {};
-    const std::vector<Eigen::Vector2d> points =
-        map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
     const std::vector<int> neighbours = {occluded.front().upstream, occluded.front().downstream};
-    std::vector<semantic::PoseCandidate> candidates = map_.prelocalizer.Localize(
-        observed, [&](const Pose2& pose) { return LaserFit(map_.localization, points, pose); },
-        &neighbours);
+    std::vector<semantic::PoseCandidate> candidates =
+        map_.prelocalizer.Localize(observed, LaserScorer(scan), &neighbours);
     ++trace->hidden_object_prelocalizations;
-    if (!candidates.empty() && !trace->prelocalization) {
-      trace->prelocalization = candidates.front().pose;
-    }
+    NoteFirstHypothesis(candidates, trace);
     return candidates;
   }
 

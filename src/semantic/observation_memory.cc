@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/angles.h"
+#include "core/check.h"
 
 namespace semchain::semantic {
 
@@ -14,7 +15,10 @@ bool ObservationMemoryOptions::Validate(std::string* error) const {
   return true;
 }
 
-ObservationMemory::ObservationMemory(const ObservationMemoryOptions& options) : options_(options) {}
+ObservationMemory::ObservationMemory(const ObservationMemoryOptions& options) : options_(options) {
+  std::string error;
+  SEMCHAIN_CHECK(options_.Validate(&error));
+}
 
 void ObservationMemory::Add(const Pose2& odometry, const std::vector<ObservedObject>& observed) {
   if (!frames_.empty()) {

@@ -129,6 +129,9 @@ double CenterBehindSurface(const SemanticObject& object, const Eigen::Vector2d& 
 PreLocalizer::PreLocalizer(const SemanticMap& map, const mapping::MapImage& occupancy,
                            const PreLocalizationOptions& options)
     : objects_(map.objects), occupancy_(occupancy), options_(options) {
+  for (std::size_t o = 0; o < objects_.size(); ++o) {
+    index_of_id_[objects_[o].id] = static_cast<int>(o);
+  }
   for (std::size_t a = 0; a < objects_.size(); ++a) {
     for (std::size_t b = 0; b < objects_.size(); ++b) {
       if (a == b) continue;
@@ -224,28 +227,29 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
       x = n == 2 && (refined[1] - x).norm() < (refined[0] - x).norm() ? refined[1] : refined[0];
     }
     if (lost) continue;
-    // The heading each bearing gives; the mirror solution disagrees.
-    const Eigen::Vector2d to_a = oa.center - x;
-    const Eigen::Vector2d to_b = ob.center - x;
-    const auto pi_bearing = [](const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); };
-    const double theta_a = std::atan2(to_a.y(), to_a.x()) - std::atan2(pi.y(), pi.x());
-    const double theta_b = std::atan2(to_b.y(), to_b.x()) - std::atan2(pj.y(), pj.x());
+    // The heading each bearing gives at a position; the mirror solution disagrees.
+    const double bearing_i = std::atan2(pi.y(), pi.x());
+    const double bearing_j = std::atan2(pj.y(), pj.x());
+    const auto heading_from = [](const Eigen::Vector2d& at, const Eigen::Vector2d& centre,
+                                 double bearing) {
+      return std::atan2(centre.y() - at.y(), centre.x() - at.x()) - bearing;
+    };
+    const auto headings_agree = [&](const Eigen::Vector2d& at) {
+      return std::abs(NormalizeAngle(heading_from(at, oa.center, bearing_i) -
+                                     heading_from(at, ob.center, bearing_j))) <=
+             options_.heading_agreement;
+    };
     PoseCandidate candidate;
-    candidate.pose = Pose2(x.x(), x.y(), CircularMean(theta_a, theta_b));
+    candidate.pose = Pose2(
+        x.x(), x.y(),
+        CircularMean(heading_from(x, oa.center, bearing_i), heading_from(x, ob.center, bearing_j)));
     if (options_.refine) {
       // Ranges and bearings together; the bearings must then agree at the refined pose.
       candidate.matches = {{i, oa.id}, {j, ob.id}};
       Refine(observed, &candidate);
       candidate.matches.clear();
-      const Pose2& p = candidate.pose;
-      const double refined_a =
-          std::atan2(oa.center.y() - p.y, oa.center.x() - p.x) - pi_bearing(pi);
-      const double refined_b =
-          std::atan2(ob.center.y() - p.y, ob.center.x() - p.x) - pi_bearing(pj);
-      if (std::abs(NormalizeAngle(refined_a - refined_b)) > options_.heading_agreement) continue;
-    } else if (std::abs(NormalizeAngle(theta_a - theta_b)) > options_.heading_agreement) {
-      continue;
     }
+    if (!headings_agree(candidate.pose.translation())) continue;
     if (!InFreeSpace(candidate.pose.translation())) continue;
     const double sigma =
         options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
@@ -290,9 +294,6 @@ std::vector<PoseCandidate> PreLocalizer::Localize(
     return only == nullptr || std::find(only->begin(), only->end(), id) != only->end();
   };
   std::vector<PoseCandidate> candidates;
-  std::map<int, int> index_of_id;
-  for (std::size_t o = 0; o < objects_.size(); ++o)
-    index_of_id[objects_[o].id] = static_cast<int>(o);
   for (std::size_t i = 0; i < observed.size(); ++i) {
     for (std::size_t j = i + 1; j < observed.size(); ++j) {
       const Eigen::Vector2d pi = observed[i].surface;
@@ -302,8 +303,8 @@ std::vector<PoseCandidate> PreLocalizer::Localize(
            RetrievePairs(observed[i].class_name, observed[j].class_name, d)) {
         (void)distance;
         if (!allowed(a) || !allowed(b)) continue;
-        AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), index_of_id[a],
-                          index_of_id[b], &candidates);
+        AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), index_of_id_.at(a),
+                          index_of_id_.at(b), &candidates);
       }
     }
   }
@@ -358,14 +359,11 @@ void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
   if (candidate->matches.size() < 2) return;
   // The rigid transform that best aligns the centres the camera implies (robot frame) with the
   // mapped centres (world), in closed form (least squares, as Umeyama without scaling).
-  std::map<int, int> index_of_id;
-  for (std::size_t o = 0; o < objects_.size(); ++o)
-    index_of_id[objects_[o].id] = static_cast<int>(o);
   std::vector<Eigen::Vector2d> seen;
   std::vector<Eigen::Vector2d> mapped;
   for (const auto& [k, id] : candidate->matches) {
     const ObservedObject& s = observed[static_cast<std::size_t>(k)];
-    const SemanticObject& object = objects_[static_cast<std::size_t>(index_of_id[id])];
+    const SemanticObject& object = objects_[static_cast<std::size_t>(index_of_id_.at(id))];
     const Eigen::Vector2d world_ray = Unit(object.center - candidate->pose.translation());
     seen.push_back(s.surface + CenterBehindSurface(object, -world_ray) * Unit(s.surface));
     mapped.push_back(object.center);

@@ -152,6 +152,7 @@ class PreLocalizer {
             std::vector<PoseCandidate>* candidates) const;
 
   std::vector<SemanticObject> objects_;
+  std::map<int, int> index_of_id_;  // object id → index into objects_
   std::map<std::pair<std::string, std::string>, std::vector<IndexedPair>> pairs_;
   mapping::MapImage occupancy_;
   cv::Mat clearance_;  // CV_32F metres to the nearest non-free cell, row = cell y
