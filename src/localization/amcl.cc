@@ -98,15 +98,16 @@ void Amcl::SensorUpdate(const LaserBeams& beams) {
   }
   mean_beam_likelihood_ = beam_sum;
   ++counters_.updates;
-  // Probabilistic Robotics Table 8.3. nav2 averages total / N, which jumps whenever KLD changes
-  // N; the weighted mean likelihood does not.
-  if (options_.recovery_alpha_slow > 0.0 && options_.recovery_alpha_fast > 0.0) {
-    if (w_slow_ == 0.0) {
-      w_slow_ = w_fast_ = total;
-    } else {
-      w_slow_ += options_.recovery_alpha_slow * (total - w_slow_);
-      w_fast_ += options_.recovery_alpha_fast * (total - w_fast_);
-    }
+  // Probabilistic Robotics Table 8.3 as nav2 pf_update_sensor keeps it (w_avg = total / N), or
+  // the weighted mean likelihood itself (recovery_weighted_mean). With both alphas 0 (nav2's
+  // default) the averages keep their first value and never call for random particles.
+  if (total > 0.0) {
+    const double average =
+        options_.recovery_weighted_mean ? total : total / static_cast<double>(particles_.size());
+    w_slow_ =
+        w_slow_ == 0.0 ? average : w_slow_ + options_.recovery_alpha_slow * (average - w_slow_);
+    w_fast_ =
+        w_fast_ == 0.0 ? average : w_fast_ + options_.recovery_alpha_fast * (average - w_fast_);
   }
   detector_.Update(total - 1.0, mean_beam_likelihood_);
   if (prior_) {

@@ -88,6 +88,8 @@ class Amcl {
   const FailureDetector& failure_detector() const { return detector_; }
   // The weighted mean per-beam likelihood of the last sensor update.
   double mean_beam_likelihood() const { return mean_beam_likelihood_; }
+  // The recovery averages (AmclOptions::recovery_weighted_mean says of what); 0 after an
+  // initialisation and after random particles were injected.
   double w_slow() const { return w_slow_; }
   double w_fast() const { return w_fast_; }
   const AmclCounters& counters() const { return counters_; }

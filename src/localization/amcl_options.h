@@ -78,6 +78,11 @@ struct AmclOptions {
   // max(0, 1 − w_fast / w_slow). nav2's default 0.0 turns it off; 0.001 / 0.1 are usual values.
   double recovery_alpha_slow = 0.0;
   double recovery_alpha_fast = 0.0;
+  // What w_slow / w_fast average. false (nav2 pf_update_sensor): the mean particle weight after
+  // the update, Σ wᵢ pᵢ / N with Σ wᵢ = 1, which jumps whenever KLD changes N (a growing sample
+  // set looks like a likelihood drop and injects particles). true: the weighted mean likelihood
+  // Σ wᵢ pᵢ, which does not depend on N.
+  bool recovery_weighted_mean = false;
 
   int resample_interval = 1;  // resample every n-th sensor update
   // ROS amcl's selective_resampling (off by default, as there): resample only when

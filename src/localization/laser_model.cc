@@ -71,7 +71,9 @@ double BeamModel::BeamLikelihood(double range, double expected, double range_max
   if (z < 0.0) {
     pz += options_.z_short * options_.lambda_short * std::exp(-options_.lambda_short * range);
   }
-  if (range >= range_max) pz += options_.z_max;
+  // As nav2: z_max only for a reading of exactly range_max, z_rand only below it; a reading
+  // beyond range_max (CARMEN's 81.91 "no return" above an 80.99 m maximum) gets neither.
+  if (range == range_max) pz += options_.z_max;
   if (range < range_max) pz += options_.z_rand / range_max;
   return pz;
 }
@@ -82,8 +84,7 @@ double BeamModel::Weight(const LaserBeams& beams, const Pose2& pose, double* mea
   for (std::size_t i = 0; i < beams.ranges.size(); ++i) {
     const double expected =
         map_.CalcRange(laser.translation(), laser.theta + beams.bearings[i], beams.range_max);
-    const double pz =
-        BeamLikelihood(std::min(beams.ranges[i], beams.range_max), expected, beams.range_max);
+    const double pz = BeamLikelihood(beams.ranges[i], expected, beams.range_max);
     p += pz * pz * pz;
     sum += pz;
   }

@@ -57,8 +57,8 @@ class LikelihoodFieldModel : public LaserModel {
 };
 
 // nav2 beam: the expected range z* is ray cast on the map; pz = z_hit exp(−(z − z*)² / 2σ_hit²)
-// (unnormalised, as in nav2) + z_short λ e^{−λz} when z < z*, + z_max for a max-range reading,
-// + z_rand / range_max otherwise.
+// (unnormalised, as in nav2) + z_short λ e^{−λz} when z < z*, + z_max for a reading of exactly
+// range_max, + z_rand / range_max for one below it (a reading beyond range_max gets neither).
 class BeamModel : public LaserModel {
  public:
   BeamModel(const LocalizationMap& map, const AmclOptions& options);

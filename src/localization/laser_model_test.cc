@@ -84,6 +84,30 @@ TEST(BeamModelTest, RayCastAndMixture) {
   EXPECT_NEAR(weight, 1.0 + std::pow(0.5 + 0.5 / 20.0, 3), 1e-9);
 }
 
+// nav2 adds z_max only to a reading of exactly range_max and z_rand only below it, so a reading
+// beyond range_max (CARMEN's 81.91 m "no return" above an 80.99 m maximum) keeps only the tail of
+// the hit Gaussian; the likelihood field skips both.
+TEST(BeamModelTest, ReadingsBeyondRangeMaxGetNeitherZMaxNorZRand) {
+  const LocalizationMap map(WallMap(), 2.0);
+  AmclOptions options;
+  options.laser_model_type = LaserModelType::kBeam;
+  const BeamModel model(map, options);
+  EXPECT_NEAR(model.BeamLikelihood(20.0, 20.0, 20.0), 0.5 + 0.05, 1e-12);
+  EXPECT_NEAR(model.BeamLikelihood(20.1, 20.0, 20.0), 0.5 * std::exp(-0.01 / 0.08), 1e-12);
+  EXPECT_NEAR(model.BeamLikelihood(20.1, 1.975, 20.0), 0.0, 1e-12);
+  options.laser_max_range = -1.0;  // the scan's 20 m
+  const BeamModel beam(map, options);
+  double mean_beam = 0.0;
+  // Facing the wall (expected 1.975 m): the over-range reading scores 0, so p = 1 + 0³.
+  EXPECT_DOUBLE_EQ(
+      beam.Weight(SelectBeams(OneBeam(20.5), Pose2(), options), Pose2(0, 0.3, 0), &mean_beam), 1.0);
+  EXPECT_NEAR(mean_beam, 0.0, 1e-12);
+  const LikelihoodFieldModel field(map, options);
+  EXPECT_DOUBLE_EQ(
+      field.Weight(SelectBeams(OneBeam(20.5), Pose2(), options), Pose2(0, 0.3, 0), &mean_beam),
+      1.0);
+}
+
 TEST(SelectBeamsTest, EvenlySpacedAsNav2) {
   LaserScan scan;
   scan.max_range = 30.0;

@@ -24,10 +24,9 @@ LocalizationMap::LocalizationMap(const mapping::MapImage& map, double likelihood
 Pose2 LocalizationMap::RandomFreePose(Rng& rng) const {
   SEMCHAIN_CHECK(!free_cells_.empty());
   std::uniform_int_distribution<std::size_t> pick(0, free_cells_.size() - 1);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::Vector2i& cell = free_cells_[pick(rng)];
-  const double x = field_.origin().x() + (cell.x() + unit(rng)) * resolution();
-  const double y = field_.origin().y() + (cell.y() + unit(rng)) * resolution();
+  const double x = field_.origin().x() + (cell.x() + 0.5) * resolution();
+  const double y = field_.origin().y() + (cell.y() + 0.5) * resolution();
   return Pose2(x, y, std::uniform_real_distribution<double>(-kPi, kPi)(rng));
 }
 

@@ -34,8 +34,8 @@ class LocalizationMap {
   }
   const std::vector<Eigen::Vector2i>& free_cells() const { return free_cells_; }
 
-  // A pose uniformly distributed over the free cells and every heading (nav2's
-  // uniform_pose_generator, plus a uniform position inside the cell). Needs a free cell.
+  // A pose at the centre of a free cell drawn uniformly, with a uniform heading in [−π, π)
+  // (nav2's uniform_pose_generator). Needs a free cell.
   Pose2 RandomFreePose(Rng& rng) const;
 
   // Distance from 'origin' along heading 'angle' to the first cell that is not free (occupied,

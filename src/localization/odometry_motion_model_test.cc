@@ -53,6 +53,29 @@ TEST(OdometryMotionModelTest, SampleMomentsMatchTheAnalyticMeanAndVariance) {
   EXPECT_NEAR(var_t, rot_var, 0.02 * rot_var);
 }
 
+// nav2's DifferentialMotionModel on a turn in place whose odometry also shifted 3 cm sideways:
+// above 1 cm the shift sets δrot1 (about 90°), and both rotations then drive the noise through
+// min(|δ|, |π − δ|): σ_rot1 = √(α1 n1² + α2 t²), σ_trans = √(α3 t² + α4 (n1² + n2²)),
+// σ_rot2 = √(α1 n2² + α2 t²).
+TEST(OdometryMotionModelTest, SigmasOfATurnInPlaceWithASidewaysShiftAreNav2s) {
+  const OdometryMotionModel model({0.2, 0.2, 0.2, 0.2});
+  const OdometryMotion u = OdometryMotion::Between(Pose2(0, 0, 0), Pose2(0.0, 0.03, 0.2));
+  EXPECT_NEAR(u.rot1, kPi / 2, 1e-12);
+  EXPECT_NEAR(u.trans, 0.03, 1e-12);
+  EXPECT_NEAR(u.rot2, 0.2 - kPi / 2, 1e-12);
+  const double n1 = kPi / 2, n2 = kPi / 2 - 0.2;
+  EXPECT_NEAR(u.rot1_noise, n1, 1e-12);
+  EXPECT_NEAR(u.rot2_noise, n2, 1e-12);
+  EXPECT_NEAR(model.Rot1Sigma(u), std::sqrt(0.2 * n1 * n1 + 0.2 * 0.0009), 1e-12);
+  EXPECT_NEAR(model.TransSigma(u), std::sqrt(0.2 * 0.0009 + 0.2 * (n1 * n1 + n2 * n2)), 1e-12);
+  EXPECT_NEAR(model.Rot2Sigma(u), std::sqrt(0.2 * n2 * n2 + 0.2 * 0.0009), 1e-12);
+  // Below 1 cm δrot1 is 0 and the whole turn is δrot2.
+  const OdometryMotion small = OdometryMotion::Between(Pose2(0, 0, 0), Pose2(0.0, 0.009, 0.2));
+  EXPECT_EQ(small.rot1, 0.0);
+  EXPECT_NEAR(small.rot2, 0.2, 1e-12);
+  EXPECT_NEAR(model.TransSigma(small), std::sqrt(0.2 * 0.009 * 0.009 + 0.2 * 0.04), 1e-12);
+}
+
 TEST(OdometryMotionModelTest, NoMotionNoNoise) {
   const OdometryMotionModel model({0.2, 0.2, 0.2, 0.2});
   const OdometryMotion u = OdometryMotion::Between(Pose2(1, 2, 3), Pose2(1, 2, 3));

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "core/angles.h"
+
 namespace semchain::localization {
 namespace {
 
@@ -49,13 +51,18 @@ struct Accumulator {
 
 std::vector<PoseCluster> ClusterParticles(const std::vector<Particle>& particles,
                                           const Eigen::Vector3d& bin_size) {
-  // Bin → list of particle indices, then flood fill over touching bins.
+  // Bin → list of particle indices, then flood fill over touching bins. Headings are binned from
+  // −π so that the bins tile the circle, and the last heading bin touches the first: nav2 never
+  // wraps a particle's heading, so a cloud it tracks keeps one winding and is not cut at ±π.
+  const int heading_bins =
+      std::max(1, static_cast<int>(std::ceil(2.0 * kPi / bin_size.z() - 1e-9)));
   std::map<Bin, std::vector<int>, BinLess> bins;
   for (int i = 0; i < static_cast<int>(particles.size()); ++i) {
     const Pose2& p = particles[static_cast<std::size_t>(i)].pose;
+    const int heading = std::clamp(static_cast<int>(std::floor((p.theta + kPi) / bin_size.z())), 0,
+                                   heading_bins - 1);
     const Bin bin(static_cast<int>(std::floor(p.x / bin_size.x())),
-                  static_cast<int>(std::floor(p.y / bin_size.y())),
-                  static_cast<int>(std::floor(p.theta / bin_size.z())));
+                  static_cast<int>(std::floor(p.y / bin_size.y())), heading);
     bins[bin].push_back(i);
   }
   std::map<Bin, bool, BinLess> visited;
@@ -72,7 +79,8 @@ std::vector<PoseCluster> ClusterParticles(const std::vector<Particle>& particles
       for (int dx = -1; dx <= 1; ++dx) {
         for (int dy = -1; dy <= 1; ++dy) {
           for (int dt = -1; dt <= 1; ++dt) {
-            const Bin next = bin + Bin(dx, dy, dt);
+            const Bin next(bin.x() + dx, bin.y() + dy,
+                           (bin.z() + dt + heading_bins) % heading_bins);
             if (bins.count(next) == 0 || visited[next]) continue;
             visited[next] = true;
             stack.push_back(next);

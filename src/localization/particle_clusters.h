@@ -8,7 +8,9 @@
 // Particle clusters as nav2's pf_cluster_stats forms them: particles are binned on an
 // (x, y, θ) histogram, bins that touch (26-neighbourhood) form a cluster, and each cluster
 // gets its weight, weighted mean (circular mean for θ) and covariance. AMCL's estimate is the
-// mean of the heaviest cluster.
+// mean of the heaviest cluster. Heading bins wrap around: nav2 keeps particle headings unwrapped,
+// so a cloud it tracks through ±π stays one cluster; with headings kept in (−π, π] the bins on
+// either side of ±π must touch for the same result.
 namespace semchain::localization {
 
 struct Particle {
@@ -24,7 +26,8 @@ struct PoseCluster {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
-// Clusters of 'particles' on bins of 'bin_size' (x, y, θ), heaviest first.
+// Clusters of 'particles' on bins of 'bin_size' (x, y, θ; θ bins counted from −π), heaviest
+// first.
 std::vector<PoseCluster> ClusterParticles(const std::vector<Particle>& particles,
                                           const Eigen::Vector3d& bin_size);
 
