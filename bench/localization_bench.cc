@@ -130,6 +130,27 @@ void BM_BranchAndBoundWithPrior(benchmark::State& state) {
 }
 BENCHMARK(BM_BranchAndBoundWithPrior)->Unit(benchmark::kMillisecond);
 
+// Ceres refinement (seed 001 §2.2) of the scan from a pose one cell and one angular step off,
+// as it follows every branch-and-bound match.
+void BM_CeresRefinement(benchmark::State& state) {
+  const Scene& scene = GetScene();
+  const ScanMatchRelocalizer relocalizer(scene.map, {});
+  const std::vector<Eigen::Vector2d> points =
+      relocalizer.MatchPoints(scene.scan.scan, scene.scan.LaserOffset());
+  const Pose2 start = scene.scan.odometry * Pose2(0.05, -0.05, 0.005);
+  mapping::CeresMatchResult result;
+  for (auto _ : state) {
+    result = mapping::RefineWithCeres(relocalizer.grid(), points, start, {});
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetLabel(scene.name);
+  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["iterations"] = result.iterations;
+  state.counters["error_m"] =
+      (result.pose.translation() - scene.scan.odometry.translation()).norm();
+}
+BENCHMARK(BM_CeresRefinement)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 }  // namespace semchain::localization
 

@@ -197,6 +197,7 @@ struct TrialOutcome {
   double final_error_rad = 0.0;
   double time = 0.0;
   double cpu = 0.0;
+  double search_cpu = 0.0;
   int iterations = 0;
   double error_m = 0.0;
   double error_rad = 0.0;
@@ -242,6 +243,7 @@ TrialOutcome Score(const RelocTrace& trace, const RelocTrialRun& trial,
   if (outcome.time > options.time_limit) return outcome;
   outcome.success = true;
   outcome.cpu = trace.cpu_seconds[first];
+  outcome.search_cpu = trace.search_cpu[first];
   outcome.iterations = trace.iterations[first];
   const Pose2& e = *trace.estimates.back();
   const Pose2& t = trial.truth.back().pose;
@@ -262,6 +264,7 @@ void Accumulate(const TrialOutcome& outcome, RelocMethodStats* stats) {
   ++stats->successes;
   stats->mean_time_s += outcome.time;
   stats->mean_cpu_ms += 1000.0 * outcome.cpu;
+  stats->mean_search_cpu_ms += 1000.0 * outcome.search_cpu;
   stats->mean_iterations += outcome.iterations;
   stats->mean_error_m += outcome.error_m;
   stats->mean_error_deg += outcome.error_rad * 180.0 / M_PI;
@@ -273,6 +276,7 @@ void Finish(RelocMethodStats* stats) {
     const double n = stats->successes;
     stats->mean_time_s /= n;
     stats->mean_cpu_ms /= n;
+    stats->mean_search_cpu_ms /= n;
     stats->mean_iterations /= n;
     stats->mean_error_m /= n;
     stats->mean_error_deg /= n;
@@ -373,11 +377,17 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
       record.success = outcome.success;
       record.time_s = outcome.time;
       record.cpu_ms = 1000.0 * outcome.cpu;
+      record.search_cpu_ms = 1000.0 * outcome.search_cpu;
       record.localized = outcome.localized;
       record.error_m = outcome.final_error_m;
       record.error_deg = outcome.final_error_rad * 180.0 / M_PI;
       record.prelocalizations = trace.prelocalizations;
       record.single_object_prelocalizations = trace.single_object_prelocalizations;
+      if (outcome.prelocalized) {
+        record.prelocalization_error =
+            Eigen::Vector3d(outcome.prelocalization_error.x(), outcome.prelocalization_error.y(),
+                            outcome.prelocalization_error_rad * 180.0 / M_PI);
+      }
       result.runs[method].push_back(record);
     }
     fs::remove_all(run, ignored);
@@ -395,6 +405,7 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                      {"success_rate", s.success_rate},
                      {"mean_time_s", s.mean_time_s},
                      {"mean_cpu_ms", s.mean_cpu_ms},
+                     {"mean_search_cpu_ms", s.mean_search_cpu_ms},
                      {"mean_iterations", s.mean_iterations},
                      {"mean_error_m", s.mean_error_m},
                      {"mean_error_deg", s.mean_error_deg},
@@ -407,16 +418,23 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
   for (const auto& [name, records] : result.runs) {
     nlohmann::json list = nlohmann::json::array();
     for (const RelocTrialRecord& r : records) {
+      nlohmann::json prelocalization_error = nullptr;
+      if (r.prelocalization_error) {
+        prelocalization_error = {r.prelocalization_error->x(), r.prelocalization_error->y(),
+                                 r.prelocalization_error->z()};
+      }
       list.push_back({{"trial", r.trial},
                       {"start", {r.start[0], r.start[1], r.start[2]}},
                       {"success", r.success},
                       {"time_s", r.time_s},
                       {"cpu_ms", r.cpu_ms},
+                      {"search_cpu_ms", r.search_cpu_ms},
                       {"localized", r.localized},
                       {"error_m", r.error_m},
                       {"error_deg", r.error_deg},
                       {"prelocalizations", r.prelocalizations},
-                      {"single_object_prelocalizations", r.single_object_prelocalizations}});
+                      {"single_object_prelocalizations", r.single_object_prelocalizations},
+                      {"prelocalization_error", prelocalization_error}});
     }
     runs[name] = list;
   }
@@ -438,18 +456,23 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
                      std::to_string(result.map_ate_m) + " m), " +
                      std::to_string(result.map_objects) + " objects\n\n";
   text +=
-      "| method | success | mean time (s) | mean CPU (ms) | iterations | error (m) | error (deg) "
-      "| pre-localization error x / y (m) |\n|---|---|---|---|---|---|---|---|\n";
+      "| method | success | mean time (s) | mean CPU (ms) | search CPU (ms) | iterations | error "
+      "(m) "
+      "| error (deg) | pre-localization error x / y (m) |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [name, s] : result.methods) {
+    char search_cpu[32];
+    std::snprintf(search_cpu, sizeof(search_cpu), "%.2f", s.mean_search_cpu_ms);
     char line[400];
-    std::snprintf(
-        line, sizeof(line), "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %.1f | %.3f | %.2f | %s |\n",
-        name.c_str(), s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s, s.mean_cpu_ms,
-        s.mean_iterations, s.mean_error_m, s.mean_error_deg,
-        s.prelocalized > 0 ? (std::to_string(s.prelocalization_error_x_m).substr(0, 5) + " / " +
-                              std::to_string(s.prelocalization_error_y_m).substr(0, 5))
-                                 .c_str()
-                           : "–");
+    std::snprintf(line, sizeof(line),
+                  "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %s | %.1f | %.3f | %.2f | %s |\n",
+                  name.c_str(), s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s,
+                  s.mean_cpu_ms, IsScanMatcherMethod(name) ? search_cpu : "–", s.mean_iterations,
+                  s.mean_error_m, s.mean_error_deg,
+                  s.prelocalized > 0
+                      ? (std::to_string(s.prelocalization_error_x_m).substr(0, 5) + " / " +
+                         std::to_string(s.prelocalization_error_y_m).substr(0, 5))
+                            .c_str()
+                      : "–");
     text += line;
   }
   return text;

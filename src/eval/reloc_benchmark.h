@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,10 @@ struct RelocMethodStats {
   int successes = 0;
   double success_rate = 0.0;
   // Over successful trials.
-  double mean_time_s = 0.0;      // simulated time from the start to convergence
-  double mean_cpu_ms = 0.0;      // CPU time the method spent until convergence
+  double mean_time_s = 0.0;  // simulated time from the start to convergence
+  double mean_cpu_ms = 0.0;  // CPU time the method spent until convergence
+  // Scan-matcher methods: the part of it spent searching (RelocTrace::search_cpu).
+  double mean_search_cpu_ms = 0.0;
   double mean_iterations = 0.0;  // filter updates / matcher runs until convergence
   double mean_error_m = 0.0;     // at the end of the trial
   double mean_error_deg = 0.0;
@@ -61,13 +64,16 @@ struct RelocTrialRecord {
   int trial = 0;
   double start[3] = {0.0, 0.0, 0.0};  // x, y, θ
   bool success = false;
-  double time_s = 0.0;     // when successful
-  double cpu_ms = 0.0;     // until convergence, when successful
-  bool localized = false;  // an estimate at the end
-  double error_m = 0.0;    // at the end (when localized)
+  double time_s = 0.0;         // when successful
+  double cpu_ms = 0.0;         // until convergence, when successful
+  double search_cpu_ms = 0.0;  // the part of it spent searching (scan-matcher methods)
+  bool localized = false;      // an estimate at the end
+  double error_m = 0.0;        // at the end (when localized)
   double error_deg = 0.0;
   int prelocalizations = 0;
   int single_object_prelocalizations = 0;
+  // |x|, |y| (m) and |θ| (deg) error of the first pre-localization, when there was one.
+  std::optional<Eigen::Vector3d> prelocalization_error;
 };
 
 struct RelocBenchmarkResult {

@@ -101,6 +101,7 @@ class MethodRun {
       cpu += ThreadCpuSeconds() - start;
       trace.estimates.push_back(estimate_);
       trace.cpu_seconds.push_back(cpu);
+      trace.search_cpu.push_back(trace.search_cpu_seconds);
       trace.iterations.push_back(iterations);
       if (inputs_.record_particles_every > 0) RecordParticles(scan, &trace);
     }
@@ -109,10 +110,14 @@ class MethodRun {
   }
 
  private:
-  // Rates a pose by how well this scan fits the map there.
+  // Rates a pose by how well this scan fits the map there. The scan's points are made on the
+  // first call: most frames yield no hypothesis to rate.
   std::function<double(const Pose2&)> LaserScorer(const StampedScan& scan) const {
-    return [this, points = map_.matcher.MatchPoints(scan.scan, scan.LaserOffset())](
-               const Pose2& pose) { return LaserFit(map_.localization, points, pose); };
+    return [this, &scan,
+            points = std::optional<std::vector<Eigen::Vector2d>>()](const Pose2& pose) mutable {
+      if (!points) points = map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
+      return LaserFit(map_.localization, *points, pose);
+    };
   }
 
   // The first best hypothesis of the trial is what the benchmark scores as the pre-localization.
@@ -148,10 +153,11 @@ class MethodRun {
   std::vector<semantic::PoseCandidate> PreLocalizeSingle(
       const StampedScan& scan, const std::vector<semantic::ObservedObject>& observed,
       RelocTrace* trace) const {
+    // Not noted as the trial's pre-localization: its many circle hypotheses are for the scan
+    // matcher to tell apart, and the benchmark's pre-localization error is the paper's (pairs).
     std::vector<semantic::PoseCandidate> candidates =
         map_.prelocalizer.LocalizeSingle(observed, LaserScorer(scan));
     ++trace->single_object_prelocalizations;
-    NoteFirstHypothesis(candidates, trace);
     return candidates;
   }
 
@@ -233,48 +239,59 @@ class MethodRun {
     }
     // Scan-matcher methods: relocalize once, then track.
     if (!tracking_) {
-      localization::RelocalizationResult result;
-      // Without a semantic prior after a full turn (no two objects in view anywhere around),
-      // semantic-scanmatch searches the whole map, as a robot would rather than stay lost.
-      if (start_odometry_) {
-        turned_ += std::abs(NormalizeAngle(scan.odometry.theta - last_heading_));
-      } else {
-        start_odometry_ = scan.odometry;
-      }
-      last_heading_ = scan.odometry.theta;
-      if (method_ == "scanmatch-global") {
-        result = map_.matcher.RelocalizeGlobal(scan.scan, scan.LaserOffset());
-      } else {
-        std::vector<semantic::PoseCandidate> candidates;
-        std::vector<semantic::ObservedObject> observed;
-        if (frame) {
-          observed = Observe(scan, *frame);
-          candidates = PreLocalize(scan, observed, trace);
-        }
-        const bool full_turn = turned_ >= 2.0 * M_PI;
-        if (candidates.empty() && full_turn && map_.method.single_object && !observed.empty() &&
-            !single_object_tried_) {
-          // Once: the circles give many windows, and a turn's objects are all remembered.
-          single_object_tried_ = true;
-          candidates = PreLocalizeSingle(scan, observed, trace);
-        }
-        if (!candidates.empty()) {
-          result = map_.matcher.Relocalize(scan.scan, scan.LaserOffset(), ToHypotheses(candidates));
-        } else if (full_turn) {
-          result = map_.matcher.RelocalizeGlobal(scan.scan, scan.LaserOffset());
-        } else {
-          return 0;
-        }
-      }
-      if (!result.success) return 1;
-      amcl_.InitializePose(result.pose, kTrackingCovariance);
+      const double search_start = ThreadCpuSeconds();
+      std::optional<localization::RelocalizationResult> result = Relocalize(scan, frame, trace);
+      trace->search_cpu_seconds += ThreadCpuSeconds() - search_start;
+      if (!result) return 0;
+      if (!result->success) return 1;
+      amcl_.InitializePose(result->pose, kTrackingCovariance);
       tracking_ = true;
-      filter_pose_ = result.pose;
+      filter_pose_ = result->pose;
       filter_odometry_ = scan.odometry;
-      estimate_ = result.pose;
+      estimate_ = result->pose;
       return 1;
     }
     return Track(scan);
+  }
+
+  // One relocalization attempt of a scan-matcher method; nothing when it waits for a prior.
+  std::optional<localization::RelocalizationResult> Relocalize(const StampedScan& scan,
+                                                               const RelocFrame* frame,
+                                                               RelocTrace* trace) {
+    if (start_odometry_) {
+      turned_ += std::abs(NormalizeAngle(scan.odometry.theta - last_heading_));
+    } else {
+      start_odometry_ = scan.odometry;
+    }
+    last_heading_ = scan.odometry.theta;
+    if (method_ == "scanmatch-global") {
+      return map_.matcher.RelocalizeGlobal(scan.scan, scan.LaserOffset());
+    }
+    std::vector<semantic::PoseCandidate> candidates;
+    std::vector<semantic::ObservedObject> observed;
+    if (frame) {
+      observed = Observe(scan, *frame);
+      candidates = PreLocalize(scan, observed, trace);
+    }
+    const bool full_turn = turned_ >= 2.0 * M_PI;
+    if (candidates.empty() && full_turn && map_.method.single_object && !single_object_tried_) {
+      // Once: the circles give many windows, and a turn's objects are all remembered (also when
+      // this scan has no frame or its frame shows nothing).
+      if (observed.empty() && map_.method.observation_memory) {
+        observed = memory_.Recall(scan.odometry);
+      }
+      if (!observed.empty()) {
+        single_object_tried_ = true;
+        candidates = PreLocalizeSingle(scan, observed, trace);
+      }
+    }
+    if (!candidates.empty()) {
+      return map_.matcher.Relocalize(scan.scan, scan.LaserOffset(), ToHypotheses(candidates));
+    }
+    // Without a semantic prior after a full turn (no two objects in view anywhere around), the
+    // whole map is searched, as a robot would rather than stay lost.
+    if (full_turn) return map_.matcher.RelocalizeGlobal(scan.scan, scan.LaserOffset());
+    return std::nullopt;
   }
 
   // One AMCL step. The filter updates only after the robot moved update_min_d / turned
@@ -324,6 +341,10 @@ const std::vector<std::string>& RelocMethodNames() {
 bool IsRelocMethod(const std::string& name) {
   const auto& names = RelocMethodNames();
   return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+bool IsScanMatcherMethod(const std::string& name) {
+  return name == "semantic-scanmatch" || name == "scanmatch-global";
 }
 
 RelocMap::RelocMap(const mapping::MapImage& occupancy_in, const semantic::SemanticMap& semantic_in,

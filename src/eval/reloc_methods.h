@@ -41,6 +41,8 @@ namespace semchain::eval {
 
 const std::vector<std::string>& RelocMethodNames();
 bool IsRelocMethod(const std::string& name);
+// semantic-scanmatch and scanmatch-global: a scan matcher finds the robot, AMCL then tracks.
+bool IsScanMatcherMethod(const std::string& name);
 
 // How the semantic methods use what the camera saw.
 struct RelocMethodOptions {
@@ -94,12 +96,17 @@ struct ParticleSnapshot {
 struct RelocTrace {
   std::vector<std::optional<Pose2>> estimates;  // one per scan
   std::vector<double> cpu_seconds;              // cumulative, one per scan
-  std::vector<int> iterations;                  // cumulative filter updates / matcher runs
-  std::optional<Pose2> prelocalization;         // the first best hypothesis, when there was one
-  int prelocalization_scan = -1;                // the scan it was made at
-  int prelocalizations = 0;                     // times pre-localization was run with ≥ 2 objects
-  int single_object_prelocalizations = 0;       // ... with single-object hypotheses
-  int hidden_object_prelocalizations = 0;       // ... from a hidden object's neighbours (BoW)
+  // Scan-matcher methods: the part of cpu_seconds spent searching for the robot (observing,
+  // pre-localization, branch and bound, Ceres) before tracking began, cumulative, one per scan;
+  // the rest is AMCL (seeding the tracking filter with the match, then tracking).
+  std::vector<double> search_cpu;
+  double search_cpu_seconds = 0.0;         // running total
+  std::vector<int> iterations;             // cumulative filter updates / matcher runs
+  std::optional<Pose2> prelocalization;    // the first best hypothesis, when there was one
+  int prelocalization_scan = -1;           // the scan it was made at
+  int prelocalizations = 0;                // times pre-localization was run with ≥ 2 objects
+  int single_object_prelocalizations = 0;  // ... with single-object hypotheses
+  int hidden_object_prelocalizations = 0;  // ... from a hidden object's neighbours (BoW)
   // With RelocRunInputs::record_particles_every > 0, in time order: the first filter update,
   // the one at prelocalization_scan or the first after it, every n-th, and the last. Scan
   // matchers have no particles before they found the robot (AMCL tracks from there).

@@ -31,6 +31,10 @@ bool ScanMatchRelocalizerOptions::Validate(std::string* error) const {
     *error = "search window limits must be positive and ordered";
     return false;
   }
+  if (!(narrow_linear_window_meters >= 0.0 && narrow_angular_window_radians > 0.0)) {
+    *error = "narrow_linear_window_meters must be >= 0 and narrow_angular_window_radians > 0";
+    return false;
+  }
   return true;
 }
 
@@ -91,41 +95,78 @@ RelocalizationResult ScanMatchRelocalizer::RelocalizeGlobal(const LaserScan& sca
   return Finish(points, matcher_.MatchFullMap(points, options_.min_score));
 }
 
+mapping::SearchWindow ScanMatchRelocalizer::WindowOf(const PoseHypothesis& prior,
+                                                     bool narrow) const {
+  mapping::SearchWindow window;
+  window.center = prior.pose;
+  if (narrow) {
+    window.linear_window_meters = options_.narrow_linear_window_meters;
+    window.angular_window_radians = options_.narrow_angular_window_radians;
+    return window;
+  }
+  const Eigen::Matrix3d& c = prior.covariance;
+  window.linear_window_meters =
+      std::clamp(3.0 * std::sqrt(std::max(c(0, 0), c(1, 1))), options_.min_linear_window_meters,
+                 options_.max_linear_window_meters);
+  window.angular_window_radians =
+      std::clamp(3.0 * std::sqrt(c(2, 2)), options_.min_angular_window_radians, kPi);
+  return window;
+}
+
+ScanMatchRelocalizer::PriorSearch ScanMatchRelocalizer::SearchPriors(
+    const std::vector<Eigen::Vector2d>& points, const std::vector<PoseHypothesis>& priors,
+    bool narrow, double min_score) const {
+  PriorSearch search;
+  std::int64_t nodes = 0;
+  int angles = 0;
+  double cpu = 0.0;
+  for (std::size_t i = 0; i < priors.size(); ++i) {
+    const double bound = std::max(min_score, search.best.found ? search.best.score : 0.0);
+    const mapping::BranchAndBoundResult match =
+        matcher_.Match(points, WindowOf(priors[i], narrow), bound);
+    nodes += match.nodes_scored;
+    angles += match.angles;
+    cpu += match.cpu_seconds;
+    if (match.found && (!search.best.found || match.score > search.best.score)) {
+      search.best = match;
+      search.hypothesis = static_cast<int>(i);
+    }
+  }
+  search.best.nodes_scored = nodes;
+  search.best.angles = angles;
+  search.best.cpu_seconds = cpu;
+  return search;
+}
+
 RelocalizationResult ScanMatchRelocalizer::Relocalize(
     const LaserScan& scan, const Pose2& laser_offset,
     const std::vector<PoseHypothesis>& priors) const {
   SEMCHAIN_CHECK(ValidateHypotheses(priors).ok());
   const std::vector<Eigen::Vector2d> points = MatchPoints(scan, laser_offset);
-  mapping::BranchAndBoundResult best;
-  int best_index = -1;
-  std::int64_t nodes = 0;
-  int angles = 0;
-  double cpu = 0.0;
-  for (std::size_t i = 0; i < priors.size(); ++i) {
-    const Eigen::Matrix3d& c = priors[i].covariance;
-    mapping::SearchWindow window;
-    window.center = priors[i].pose;
-    window.linear_window_meters =
-        std::clamp(3.0 * std::sqrt(std::max(c(0, 0), c(1, 1))), options_.min_linear_window_meters,
-                   options_.max_linear_window_meters);
-    window.angular_window_radians =
-        std::clamp(3.0 * std::sqrt(c(2, 2)), options_.min_angular_window_radians, kPi);
-    // Each later window must beat the best score so far (it prunes with it).
-    const double min_score = std::max(options_.min_score, best.found ? best.score : 0.0);
-    const mapping::BranchAndBoundResult match = matcher_.Match(points, window, min_score);
-    nodes += match.nodes_scored;
-    angles += match.angles;
-    cpu += match.cpu_seconds;
-    if (match.found && (!best.found || match.score > best.score)) {
-      best = match;
-      best_index = static_cast<int>(i);
-    }
+  PriorSearch search;
+  bool widened = true;
+  if (options_.narrow_linear_window_meters > 0.0) {
+    search = SearchPriors(points, priors, /*narrow=*/true, options_.min_score);
+    widened = !search.best.found || search.best.on_window_edge;
   }
-  best.nodes_scored = nodes;
-  best.angles = angles;
-  best.cpu_seconds = cpu;
-  RelocalizationResult result = Finish(points, best);
-  result.hypothesis = best_index;
+  if (widened) {
+    // The wide windows contain the narrow ones: what the narrow search found is a bound.
+    const double bound = std::max(options_.min_score, search.best.found ? search.best.score : 0.0);
+    PriorSearch wide = SearchPriors(points, priors, /*narrow=*/false, bound);
+    wide.best.nodes_scored += search.best.nodes_scored;
+    wide.best.angles += search.best.angles;
+    wide.best.cpu_seconds += search.best.cpu_seconds;
+    if (!wide.best.found && search.best.found) {
+      wide.best.found = true;
+      wide.best.pose = search.best.pose;
+      wide.best.score = search.best.score;
+      wide.hypothesis = search.hypothesis;
+    }
+    search = wide;
+  }
+  RelocalizationResult result = Finish(points, search.best);
+  result.hypothesis = search.hypothesis;
+  result.widened = widened;
   return result;
 }
 

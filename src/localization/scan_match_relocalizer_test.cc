@@ -37,6 +37,31 @@ TEST_F(ScanMatchRelocalizerTest, PriorWindowThenCeresFindsThePose) {
   EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.01);
   EXPECT_GT(result.refined_score, 0.8);
   EXPECT_GT(result.nodes_scored, 0);
+  // 0.3 m / 0.15 rad off lies outside the narrow window: the wide one had to be searched.
+  EXPECT_TRUE(result.widened);
+}
+
+TEST_F(ScanMatchRelocalizerTest, AClosePriorIsSettledByTheNarrowWindowWithLessWork) {
+  const Pose2 truth(-2.31, 1.17, 2.2);
+  PoseHypothesis close;
+  close.pose = Pose2(truth.x + 0.08, truth.y - 0.06, truth.theta + 0.03);
+  close.covariance = Eigen::Vector3d(0.04, 0.04, 0.01).asDiagonal();
+  const RelocalizationResult narrow = relocalizer_.Relocalize(Scan(truth), Pose2(), {close});
+  ScanMatchRelocalizerOptions wide_only = Options();
+  wide_only.narrow_linear_window_meters = 0.0;
+  const ScanMatchRelocalizer wide_relocalizer(mapping::testing::RoomMap(), wide_only);
+  const RelocalizationResult wide = wide_relocalizer.Relocalize(Scan(truth), Pose2(), {close});
+  ASSERT_TRUE(narrow.success);
+  ASSERT_TRUE(wide.success);
+  EXPECT_FALSE(narrow.widened);
+  // The same optimum, found over far fewer headings and nodes.
+  EXPECT_NEAR(narrow.pose.x, wide.pose.x, 1e-3);
+  EXPECT_NEAR(narrow.pose.y, wide.pose.y, 1e-3);
+  EXPECT_NEAR(AngleDifference(narrow.pose.theta, wide.pose.theta), 0.0, 1e-3);
+  EXPECT_NEAR(narrow.pose.x, truth.x, 0.02);
+  EXPECT_NEAR(narrow.pose.y, truth.y, 0.02);
+  EXPECT_LT(narrow.angles * 2, wide.angles);
+  EXPECT_LT(narrow.nodes_scored, wide.nodes_scored);
 }
 
 TEST_F(ScanMatchRelocalizerTest, GlobalSearchWithoutPrior) {

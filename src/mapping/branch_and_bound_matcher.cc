@@ -45,6 +45,7 @@ struct BranchAndBoundMatcher::Discretization {
   std::vector<double> angles;                       // absolute headings
   std::vector<std::vector<Eigen::Vector2i>> cells;  // per heading, per point
   int min_x = 0, max_x = 0, min_y = 0, max_y = 0;   // translation offsets, cells
+  bool every_heading = false;                       // the headings go all the way round
 
   std::int64_t Sum(const PrecomputationGrid& grid, const Candidate& c) const {
     std::int64_t sum = 0;
@@ -52,6 +53,11 @@ struct BranchAndBoundMatcher::Discretization {
       sum += grid.At(cell.x() + c.dx, cell.y() + c.dy);
     }
     return sum;
+  }
+  bool OnEdge(const Candidate& c) const {
+    const bool edge_angle =
+        !every_heading && (c.angle == 0 || c.angle + 1 == static_cast<int>(angles.size()));
+    return edge_angle || c.dx == min_x || c.dx == max_x || c.dy == min_y || c.dy == max_y;
   }
   Pose2 PoseOf(const Candidate& c) const {
     return Pose2(center.x + c.dx * resolution, center.y + c.dy * resolution,
@@ -78,7 +84,8 @@ BranchAndBoundMatcher::Discretization BranchAndBoundMatcher::Discretize(
     const double r = grid_.resolution;
     step = std::acos(1.0 - r * r / (2.0 * farthest * farthest));
   }
-  if (window.angular_window_radians >= kPi) {
+  d.every_heading = window.angular_window_radians >= kPi;
+  if (d.every_heading) {
     const int n = static_cast<int>(std::ceil(kPi / step));
     for (int i = -n + 1; i <= n; ++i) d.angles.push_back(window.center.theta + i * (kPi / n));
   } else {
@@ -160,6 +167,7 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
     result.found = true;
     result.pose = d.PoseOf(*best);
     result.score = static_cast<double>(best->sum) / normalizer;
+    result.on_window_edge = d.OnEdge(*best);
   }
   result.cpu_seconds = CpuSeconds() - start;
   return result;
@@ -197,6 +205,7 @@ BranchAndBoundResult BranchAndBoundMatcher::MatchExhaustive(
   }
   result.found = true;
   result.pose = d.PoseOf(best);
+  result.on_window_edge = d.OnEdge(best);
   result.score = static_cast<double>(best.sum) / (255.0 * static_cast<double>(points.size()));
   result.angles = static_cast<int>(d.angles.size());
   result.cpu_seconds = CpuSeconds() - start;

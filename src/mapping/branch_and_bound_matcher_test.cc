@@ -72,6 +72,35 @@ TEST_F(BranchAndBoundTest, FullMapSearchFindsThePoseWithoutAPrior) {
   EXPECT_GT(result.score, 0.7);
 }
 
+TEST_F(BranchAndBoundTest, SaysWhenTheBestPoseLiesOnTheWindowEdge) {
+  BranchAndBoundOptions options;
+  options.branch_and_bound_depth = 4;
+  options.angular_step_radians = 0.02;
+  const BranchAndBoundMatcher matcher(grid_, options);
+  const Pose2 truth(-1.13, 0.42, 0.31);
+  const std::vector<Eigen::Vector2d> points = ScanPoints(truth);
+  // The truth inside the window: an interior optimum.
+  const BranchAndBoundResult inside =
+      matcher.Match(points, {Pose2(-1.08, 0.45, 0.29), 0.2, 0.1}, 0.0);
+  ASSERT_TRUE(inside.found);
+  EXPECT_FALSE(inside.on_window_edge);
+  // The truth 0.4 m beyond the window in x, or 0.05 rad beyond it in heading: the best pose
+  // found is on the border nearest to it.
+  const BranchAndBoundResult beyond_x =
+      matcher.Match(points, {Pose2(-1.73, 0.42, 0.31), 0.2, 0.1}, 0.0);
+  ASSERT_TRUE(beyond_x.found);
+  EXPECT_TRUE(beyond_x.on_window_edge);
+  // (The window is rounded outwards to whole cells and angular steps.)
+  EXPECT_GE(beyond_x.pose.x, -1.73 + 0.2 - 1e-9);
+  EXPECT_LT(beyond_x.pose.x, -1.73 + 0.2 + 0.05);
+  const BranchAndBoundResult beyond_heading =
+      matcher.Match(points, {Pose2(-1.13, 0.42, 0.16), 0.2, 0.1}, 0.0);
+  ASSERT_TRUE(beyond_heading.found);
+  EXPECT_TRUE(beyond_heading.on_window_edge);
+  EXPECT_GE(beyond_heading.pose.theta, 0.16 + 0.1 - 1e-9);
+  EXPECT_LT(beyond_heading.pose.theta, 0.16 + 0.1 + 0.02 + 1e-9);
+}
+
 TEST_F(BranchAndBoundTest, CeresRefinementRecoversASmallOffset) {
   const Pose2 truth(0.37, -2.11, 1.2);
   const std::vector<Eigen::Vector2d> points = ScanPoints(truth, 2);
