@@ -243,7 +243,7 @@ TrialOutcome Score(const RelocTrace& trace, const RelocTrialRun& trial,
   if (outcome.time > options.time_limit) return outcome;
   outcome.success = true;
   outcome.cpu = trace.cpu_seconds[first];
-  outcome.search_cpu = trace.search_cpu[first];
+  outcome.search_cpu = trace.search_cpu_seconds[first];
   outcome.iterations = trace.iterations[first];
   const Pose2& e = *trace.estimates.back();
   const Pose2& t = trial.truth.back().pose;
@@ -456,9 +456,9 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
                      std::to_string(result.map_ate_m) + " m), " +
                      std::to_string(result.map_objects) + " objects\n\n";
   text +=
-      "| method | success | mean time (s) | mean CPU (ms) | search CPU (ms) | iterations | error "
-      "(m) "
-      "| error (deg) | pre-localization error x / y (m) |\n|---|---|---|---|---|---|---|---|---|\n";
+      "| method | success | mean time (s) | mean CPU (ms) | search CPU (ms) | iterations "
+      "| error (m) | error (deg) | pre-localization error x / y (m) |\n"
+      "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [name, s] : result.methods) {
     char search_cpu[32];
     std::snprintf(search_cpu, sizeof(search_cpu), "%.2f", s.mean_search_cpu_ms);

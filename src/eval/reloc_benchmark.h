@@ -47,7 +47,7 @@ struct RelocMethodStats {
   // Over successful trials.
   double mean_time_s = 0.0;  // simulated time from the start to convergence
   double mean_cpu_ms = 0.0;  // CPU time the method spent until convergence
-  // Scan-matcher methods: the part of it spent searching (RelocTrace::search_cpu).
+  // Scan-matcher methods: the part of it spent searching (RelocTrace::search_cpu_seconds).
   double mean_search_cpu_ms = 0.0;
   double mean_iterations = 0.0;  // filter updates / matcher runs until convergence
   double mean_error_m = 0.0;     // at the end of the trial

@@ -101,7 +101,7 @@ class MethodRun {
       cpu += ThreadCpuSeconds() - start;
       trace.estimates.push_back(estimate_);
       trace.cpu_seconds.push_back(cpu);
-      trace.search_cpu.push_back(trace.search_cpu_seconds);
+      trace.search_cpu_seconds.push_back(search_cpu_);
       trace.iterations.push_back(iterations);
       if (inputs_.record_particles_every > 0) RecordParticles(scan, &trace);
     }
@@ -241,7 +241,7 @@ class MethodRun {
     if (!tracking_) {
       const double search_start = ThreadCpuSeconds();
       std::optional<localization::RelocalizationResult> result = Relocalize(scan, frame, trace);
-      trace->search_cpu_seconds += ThreadCpuSeconds() - search_start;
+      search_cpu_ += ThreadCpuSeconds() - search_start;
       if (!result) return 0;
       if (!result->success) return 1;
       amcl_.InitializePose(result->pose, kTrackingCovariance);
@@ -319,6 +319,7 @@ class MethodRun {
   double last_heading_ = 0.0;
   double turned_ = 0.0;  // radians turned (odometry) before a scan matcher found the robot
   bool tracking_ = false;
+  double search_cpu_ = 0.0;  // CPU seconds the scan matcher's search took so far
   semantic::ObservationMemory memory_{map_.method.memory};
   bool single_object_tried_ = false;
   // The latest pre-localization and the odometry when it was made.

@@ -99,8 +99,7 @@ struct RelocTrace {
   // Scan-matcher methods: the part of cpu_seconds spent searching for the robot (observing,
   // pre-localization, branch and bound, Ceres) before tracking began, cumulative, one per scan;
   // the rest is AMCL (seeding the tracking filter with the match, then tracking).
-  std::vector<double> search_cpu;
-  double search_cpu_seconds = 0.0;         // running total
+  std::vector<double> search_cpu_seconds;
   std::vector<int> iterations;             // cumulative filter updates / matcher runs
   std::optional<Pose2> prelocalization;    // the first best hypothesis, when there was one
   int prelocalization_scan = -1;           // the scan it was made at

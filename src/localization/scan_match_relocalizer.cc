@@ -113,29 +113,22 @@ mapping::SearchWindow ScanMatchRelocalizer::WindowOf(const PoseHypothesis& prior
   return window;
 }
 
-ScanMatchRelocalizer::PriorSearch ScanMatchRelocalizer::SearchPriors(
-    const std::vector<Eigen::Vector2d>& points, const std::vector<PoseHypothesis>& priors,
-    bool narrow, double min_score) const {
-  PriorSearch search;
-  std::int64_t nodes = 0;
-  int angles = 0;
-  double cpu = 0.0;
+void ScanMatchRelocalizer::SearchPriors(const std::vector<Eigen::Vector2d>& points,
+                                        const std::vector<PoseHypothesis>& priors, bool narrow,
+                                        PriorSearch* search) const {
   for (std::size_t i = 0; i < priors.size(); ++i) {
-    const double bound = std::max(min_score, search.best.found ? search.best.score : 0.0);
+    const double bound =
+        std::max(options_.min_score, search->best.found ? search->best.score : 0.0);
     const mapping::BranchAndBoundResult match =
         matcher_.Match(points, WindowOf(priors[i], narrow), bound);
-    nodes += match.nodes_scored;
-    angles += match.angles;
-    cpu += match.cpu_seconds;
-    if (match.found && (!search.best.found || match.score > search.best.score)) {
-      search.best = match;
-      search.hypothesis = static_cast<int>(i);
+    search->nodes_scored += match.nodes_scored;
+    search->angles += match.angles;
+    search->cpu_seconds += match.cpu_seconds;
+    if (match.found && (!search->best.found || match.score > search->best.score)) {
+      search->best = match;
+      search->hypothesis = static_cast<int>(i);
     }
   }
-  search.best.nodes_scored = nodes;
-  search.best.angles = angles;
-  search.best.cpu_seconds = cpu;
-  return search;
 }
 
 RelocalizationResult ScanMatchRelocalizer::Relocalize(
@@ -146,25 +139,15 @@ RelocalizationResult ScanMatchRelocalizer::Relocalize(
   PriorSearch search;
   bool widened = true;
   if (options_.narrow_linear_window_meters > 0.0) {
-    search = SearchPriors(points, priors, /*narrow=*/true, options_.min_score);
+    SearchPriors(points, priors, /*narrow=*/true, &search);
     widened = !search.best.found || search.best.on_window_edge;
   }
-  if (widened) {
-    // The wide windows contain the narrow ones: what the narrow search found is a bound.
-    const double bound = std::max(options_.min_score, search.best.found ? search.best.score : 0.0);
-    PriorSearch wide = SearchPriors(points, priors, /*narrow=*/false, bound);
-    wide.best.nodes_scored += search.best.nodes_scored;
-    wide.best.angles += search.best.angles;
-    wide.best.cpu_seconds += search.best.cpu_seconds;
-    if (!wide.best.found && search.best.found) {
-      wide.best.found = true;
-      wide.best.pose = search.best.pose;
-      wide.best.score = search.best.score;
-      wide.hypothesis = search.hypothesis;
-    }
-    search = wide;
-  }
-  RelocalizationResult result = Finish(points, search.best);
+  if (widened) SearchPriors(points, priors, /*narrow=*/false, &search);
+  mapping::BranchAndBoundResult best = search.best;
+  best.nodes_scored = search.nodes_scored;
+  best.angles = search.angles;
+  best.cpu_seconds = search.cpu_seconds;
+  RelocalizationResult result = Finish(points, best);
   result.hypothesis = search.hypothesis;
   result.widened = widened;
   return result;

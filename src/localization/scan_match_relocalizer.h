@@ -85,15 +85,20 @@ class ScanMatchRelocalizer {
   const mapping::MatchGrid& grid() const { return grid_; }
 
  private:
-  // The best match over a window around each prior (each window must beat the best so far:
-  // it prunes with it); 'window_of' gives the window of a hypothesis.
+  // The best match so far over the windows searched around the priors, and the work done.
   struct PriorSearch {
     mapping::BranchAndBoundResult best;
     int hypothesis = -1;
+    std::int64_t nodes_scored = 0;
+    int angles = 0;
+    double cpu_seconds = 0.0;
   };
-  PriorSearch SearchPriors(const std::vector<Eigen::Vector2d>& points,
-                           const std::vector<PoseHypothesis>& priors, bool narrow,
-                           double min_score) const;
+  // Searches the narrow or the wide window around each prior, continuing 'search': a window
+  // must beat its best so far (it prunes with it), so a wide search after a narrow one only
+  // replaces what the narrow one found by something better.
+  void SearchPriors(const std::vector<Eigen::Vector2d>& points,
+                    const std::vector<PoseHypothesis>& priors, bool narrow,
+                    PriorSearch* search) const;
   mapping::SearchWindow WindowOf(const PoseHypothesis& prior, bool narrow) const;
   RelocalizationResult Finish(const std::vector<Eigen::Vector2d>& points,
                               const mapping::BranchAndBoundResult& match) const;
