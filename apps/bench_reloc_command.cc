@@ -78,6 +78,8 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
       "Pre-localize from the current frame's objects only, not from all seen during the turn");
   command->add_flag("!--no-single-object", args->options.method.single_object,
                     "semantic-scanmatch: no single-object hypotheses before the whole-map search");
+  command->add_flag("!--no-lock-recheck", args->options.method.recheck_lock,
+                    "semantic-scanmatch: do not re-check the lock against later frames' objects");
   command->add_option("--out", args->out, "Output folder (results.json, results.md)")->required();
   command->callback([args, &exit_code] { exit_code = RunBenchReloc(*args); });
 }

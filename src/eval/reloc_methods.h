@@ -54,6 +54,10 @@ struct RelocMethodOptions {
   // windows around single-object hypotheses (circles around the mapped objects of a seen class)
   // before the whole map.
   bool single_object = true;
+  // semantic-scanmatch: while tracking, every frame's pre-localization checks the lock; a pose
+  // that explains more of the objects seen than the tracked one is searched beside it, and the
+  // scan matcher's better match is kept (a look-alike pair can lock the robot in the wrong place).
+  bool recheck_lock = true;
 };
 
 // Everything a method may use about the environment, built once per map.

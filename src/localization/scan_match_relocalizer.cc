@@ -91,36 +91,39 @@ RelocalizationResult ScanMatchRelocalizer::RelocalizeInWindow(
 
 RelocalizationResult ScanMatchRelocalizer::RelocalizeGlobal(const LaserScan& scan,
                                                             const Pose2& laser_offset) const {
-  const std::vector<Eigen::Vector2d> points = MatchPoints(scan, laser_offset);
+  return RelocalizeGlobal(MatchPoints(scan, laser_offset));
+}
+
+RelocalizationResult ScanMatchRelocalizer::RelocalizeGlobal(
+    const std::vector<Eigen::Vector2d>& points) const {
   return Finish(points, matcher_.MatchFullMap(points, options_.min_score));
 }
 
 mapping::SearchWindow ScanMatchRelocalizer::WindowOf(const PoseHypothesis& prior,
-                                                     bool narrow) const {
+                                                     WindowWidth width) const {
   mapping::SearchWindow window;
   window.center = prior.pose;
-  if (narrow) {
-    window.linear_window_meters = options_.narrow_linear_window_meters;
-    window.angular_window_radians = options_.narrow_angular_window_radians;
-    return window;
-  }
   const Eigen::Matrix3d& c = prior.covariance;
   window.linear_window_meters =
-      std::clamp(3.0 * std::sqrt(std::max(c(0, 0), c(1, 1))), options_.min_linear_window_meters,
-                 options_.max_linear_window_meters);
+      width.wide_linear
+          ? std::clamp(3.0 * std::sqrt(std::max(c(0, 0), c(1, 1))),
+                       options_.min_linear_window_meters, options_.max_linear_window_meters)
+          : options_.narrow_linear_window_meters;
   window.angular_window_radians =
-      std::clamp(3.0 * std::sqrt(c(2, 2)), options_.min_angular_window_radians, kPi);
+      width.wide_angular
+          ? std::clamp(3.0 * std::sqrt(c(2, 2)), options_.min_angular_window_radians, kPi)
+          : options_.narrow_angular_window_radians;
   return window;
 }
 
 void ScanMatchRelocalizer::SearchPriors(const std::vector<Eigen::Vector2d>& points,
-                                        const std::vector<PoseHypothesis>& priors, bool narrow,
-                                        PriorSearch* search) const {
+                                        const std::vector<PoseHypothesis>& priors,
+                                        WindowWidth width, PriorSearch* search) const {
   for (std::size_t i = 0; i < priors.size(); ++i) {
     const double bound =
         std::max(options_.min_score, search->best.found ? search->best.score : 0.0);
     const mapping::BranchAndBoundResult match =
-        matcher_.Match(points, WindowOf(priors[i], narrow), bound);
+        matcher_.Match(points, WindowOf(priors[i], width), bound);
     search->nodes_scored += match.nodes_scored;
     search->angles += match.angles;
     search->cpu_seconds += match.cpu_seconds;
@@ -134,22 +137,35 @@ void ScanMatchRelocalizer::SearchPriors(const std::vector<Eigen::Vector2d>& poin
 RelocalizationResult ScanMatchRelocalizer::Relocalize(
     const LaserScan& scan, const Pose2& laser_offset,
     const std::vector<PoseHypothesis>& priors) const {
+  return Relocalize(MatchPoints(scan, laser_offset), priors);
+}
+
+RelocalizationResult ScanMatchRelocalizer::Relocalize(
+    const std::vector<Eigen::Vector2d>& points, const std::vector<PoseHypothesis>& priors) const {
   SEMCHAIN_CHECK(ValidateHypotheses(priors).ok());
-  const std::vector<Eigen::Vector2d> points = MatchPoints(scan, laser_offset);
+  const bool narrow_first = options_.narrow_linear_window_meters > 0.0;
+  WindowWidth width{!narrow_first, !narrow_first};
   PriorSearch search;
-  bool widened = true;
-  if (options_.narrow_linear_window_meters > 0.0) {
-    SearchPriors(points, priors, /*narrow=*/true, &search);
-    widened = !search.best.found || search.best.on_window_edge;
+  SearchPriors(points, priors, width, &search);
+  // Widen where the best match may be cut off by the border (everywhere when nothing matched).
+  // The best match's border flags are of the window it was found in; a wider search that finds
+  // nothing better leaves it inside the wider window.
+  while (true) {
+    const WindowWidth wider{
+        width.wide_linear || !search.best.found || search.best.on_linear_edge,
+        width.wide_angular || !search.best.found || search.best.on_angular_edge};
+    if (wider.wide_linear == width.wide_linear && wider.wide_angular == width.wide_angular) break;
+    width = wider;
+    SearchPriors(points, priors, width, &search);
   }
-  if (widened) SearchPriors(points, priors, /*narrow=*/false, &search);
   mapping::BranchAndBoundResult best = search.best;
   best.nodes_scored = search.nodes_scored;
   best.angles = search.angles;
   best.cpu_seconds = search.cpu_seconds;
   RelocalizationResult result = Finish(points, best);
   result.hypothesis = search.hypothesis;
-  result.widened = widened;
+  result.widened_linear = narrow_first && width.wide_linear;
+  result.widened_angular = narrow_first && width.wide_angular;
   return result;
 }
 

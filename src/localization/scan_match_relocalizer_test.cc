@@ -19,6 +19,22 @@ class ScanMatchRelocalizerTest : public ::testing::Test {
   static LaserScan Scan(const Pose2& pose) {
     return mapping::testing::SimulateScan(mapping::testing::RoomWorld(), pose, 361, 1.5 * kPi);
   }
+  // A prior at 'pose' with standard deviations 'position_std' (m) and 'heading_std' (rad).
+  static PoseHypothesis Prior(const Pose2& pose, double position_std, double heading_std) {
+    PoseHypothesis prior;
+    prior.pose = pose;
+    prior.covariance = Eigen::Vector3d(position_std * position_std, position_std * position_std,
+                                       heading_std * heading_std)
+                           .asDiagonal();
+    return prior;
+  }
+  // Asserts that 'result' found 'truth' (2 cm, 0.01 rad).
+  static void ExpectFound(const RelocalizationResult& result, const Pose2& truth) {
+    ASSERT_TRUE(result.success);
+    EXPECT_NEAR(result.pose.x, truth.x, 0.02);
+    EXPECT_NEAR(result.pose.y, truth.y, 0.02);
+    EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.01);
+  }
   ScanMatchRelocalizer relocalizer_;
 };
 
@@ -37,8 +53,24 @@ TEST_F(ScanMatchRelocalizerTest, PriorWindowThenCeresFindsThePose) {
   EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.01);
   EXPECT_GT(result.refined_score, 0.8);
   EXPECT_GT(result.nodes_scored, 0);
-  // 0.3 m / 0.15 rad off lies outside the narrow window: the wide one had to be searched.
-  EXPECT_TRUE(result.widened);
+  // 0.15 rad off lies outside the narrow window: wider headings had to be searched.
+  EXPECT_TRUE(result.widened_angular);
+}
+
+TEST_F(ScanMatchRelocalizerTest, OnlyTheDimensionCutOffByTheBorderIsWidened) {
+  const Pose2 truth(-2.31, 1.17, 2.2);
+  // 0.09 rad off: just beyond the narrow headings, well inside its translations.
+  const RelocalizationResult turned = relocalizer_.Relocalize(
+      Scan(truth), Pose2(),
+      {Prior(Pose2(truth.x + 0.05, truth.y - 0.04, truth.theta + 0.09), 0.2, 0.1)});
+  ExpectFound(turned, truth);
+  EXPECT_TRUE(turned.widened_angular);
+  EXPECT_FALSE(turned.widened_linear);
+  // 0.6 m off in translation with the right heading: the translations are widened.
+  const RelocalizationResult shifted = relocalizer_.Relocalize(
+      Scan(truth), Pose2(), {Prior(Pose2(truth.x + 0.6, truth.y, truth.theta), 0.3, 0.1)});
+  ExpectFound(shifted, truth);
+  EXPECT_TRUE(shifted.widened_linear);
 }
 
 TEST_F(ScanMatchRelocalizerTest, AClosePriorIsSettledByTheNarrowWindowWithLessWork) {
@@ -53,7 +85,8 @@ TEST_F(ScanMatchRelocalizerTest, AClosePriorIsSettledByTheNarrowWindowWithLessWo
   const RelocalizationResult wide = wide_relocalizer.Relocalize(Scan(truth), Pose2(), {close});
   ASSERT_TRUE(narrow.success);
   ASSERT_TRUE(wide.success);
-  EXPECT_FALSE(narrow.widened);
+  EXPECT_FALSE(narrow.widened_linear);
+  EXPECT_FALSE(narrow.widened_angular);
   // The same optimum, found over far fewer headings and nodes.
   EXPECT_NEAR(narrow.pose.x, wide.pose.x, 1e-3);
   EXPECT_NEAR(narrow.pose.y, wide.pose.y, 1e-3);

@@ -54,10 +54,11 @@ struct BranchAndBoundMatcher::Discretization {
     }
     return sum;
   }
-  bool OnEdge(const Candidate& c) const {
-    const bool edge_angle =
-        !every_heading && (c.angle == 0 || c.angle + 1 == static_cast<int>(angles.size()));
-    return edge_angle || c.dx == min_x || c.dx == max_x || c.dy == min_y || c.dy == max_y;
+  bool OnLinearEdge(const Candidate& c) const {
+    return c.dx == min_x || c.dx == max_x || c.dy == min_y || c.dy == max_y;
+  }
+  bool OnAngularEdge(const Candidate& c) const {
+    return !every_heading && (c.angle == 0 || c.angle + 1 == static_cast<int>(angles.size()));
   }
   Pose2 PoseOf(const Candidate& c) const {
     return Pose2(center.x + c.dx * resolution, center.y + c.dy * resolution,
@@ -167,7 +168,8 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
     result.found = true;
     result.pose = d.PoseOf(*best);
     result.score = static_cast<double>(best->sum) / normalizer;
-    result.on_window_edge = d.OnEdge(*best);
+    result.on_linear_edge = d.OnLinearEdge(*best);
+    result.on_angular_edge = d.OnAngularEdge(*best);
   }
   result.cpu_seconds = CpuSeconds() - start;
   return result;
@@ -205,7 +207,8 @@ BranchAndBoundResult BranchAndBoundMatcher::MatchExhaustive(
   }
   result.found = true;
   result.pose = d.PoseOf(best);
-  result.on_window_edge = d.OnEdge(best);
+  result.on_linear_edge = d.OnLinearEdge(best);
+  result.on_angular_edge = d.OnAngularEdge(best);
   result.score = static_cast<double>(best.sum) / (255.0 * static_cast<double>(points.size()));
   result.angles = static_cast<int>(d.angles.size());
   result.cpu_seconds = CpuSeconds() - start;

@@ -44,9 +44,10 @@ struct BranchAndBoundResult {
   bool found = false;  // a pose scored at least the minimum score
   Pose2 pose;          // the best pose (valid when found)
   double score = 0.0;  // mean M over the points at 'pose', in [0, 1]
-  // The best pose lies on the window's border (outermost translation or heading): the optimum
-  // may be outside the window.
-  bool on_window_edge = false;
+  // The best pose lies on the window's border, at an outermost translation or an outermost
+  // heading: the optimum may be outside the window in that dimension.
+  bool on_linear_edge = false;
+  bool on_angular_edge = false;
   // Work counters: nodes scored (every level), the root nodes, the angles searched, CPU time.
   std::int64_t nodes_scored = 0;
   std::int64_t root_nodes = 0;

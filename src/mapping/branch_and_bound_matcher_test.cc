@@ -83,20 +83,23 @@ TEST_F(BranchAndBoundTest, SaysWhenTheBestPoseLiesOnTheWindowEdge) {
   const BranchAndBoundResult inside =
       matcher.Match(points, {Pose2(-1.08, 0.45, 0.29), 0.2, 0.1}, 0.0);
   ASSERT_TRUE(inside.found);
-  EXPECT_FALSE(inside.on_window_edge);
+  EXPECT_FALSE(inside.on_linear_edge);
+  EXPECT_FALSE(inside.on_angular_edge);
   // The truth 0.4 m beyond the window in x, or 0.05 rad beyond it in heading: the best pose
   // found is on the border nearest to it.
   const BranchAndBoundResult beyond_x =
       matcher.Match(points, {Pose2(-1.73, 0.42, 0.31), 0.2, 0.1}, 0.0);
   ASSERT_TRUE(beyond_x.found);
-  EXPECT_TRUE(beyond_x.on_window_edge);
+  EXPECT_TRUE(beyond_x.on_linear_edge);
+  EXPECT_FALSE(beyond_x.on_angular_edge);
   // (The window is rounded outwards to whole cells and angular steps.)
   EXPECT_GE(beyond_x.pose.x, -1.73 + 0.2 - 1e-9);
   EXPECT_LT(beyond_x.pose.x, -1.73 + 0.2 + 0.05);
   const BranchAndBoundResult beyond_heading =
       matcher.Match(points, {Pose2(-1.13, 0.42, 0.16), 0.2, 0.1}, 0.0);
   ASSERT_TRUE(beyond_heading.found);
-  EXPECT_TRUE(beyond_heading.on_window_edge);
+  EXPECT_TRUE(beyond_heading.on_angular_edge);
+  EXPECT_FALSE(beyond_heading.on_linear_edge);
   EXPECT_GE(beyond_heading.pose.theta, 0.16 + 0.1 - 1e-9);
   EXPECT_LT(beyond_heading.pose.theta, 0.16 + 0.1 + 0.02 + 1e-9);
 }
@@ -111,6 +114,36 @@ TEST_F(BranchAndBoundTest, CeresRefinementRecoversASmallOffset) {
   EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.004);
   EXPECT_LT(result.final_cost, result.initial_cost);
   EXPECT_GT(result.score, MatchScore(grid_, points, start));
+}
+
+TEST_F(BranchAndBoundTest, CeresStopsOnASmallStepCloseToTheFullSolve) {
+  const Pose2 truth(0.37, -2.11, 1.2);
+  const std::vector<Eigen::Vector2d> points = ScanPoints(truth, 2);
+  const Pose2 start(truth.x + 0.04, truth.y - 0.03, truth.theta + 0.025);
+  CeresScanMatcherOptions full;
+  full.min_step = 0.0;
+  const CeresMatchResult solved = RefineWithCeres(grid_, points, start, full);
+  CeresScanMatcherOptions early;
+  early.min_step = 1e-3;
+  const CeresMatchResult stopped = RefineWithCeres(grid_, points, start, early);
+  EXPECT_TRUE(stopped.converged);
+  EXPECT_LE(stopped.iterations, solved.iterations);
+  // The last accepted step was below 1 mm: the pose is within a few of them of the full solve.
+  EXPECT_LT((stopped.pose.translation() - solved.pose.translation()).norm(), 3e-3);
+  EXPECT_LT(std::abs(AngleDifference(stopped.pose.theta, solved.pose.theta)), 3e-3);
+}
+
+TEST_F(BranchAndBoundTest, CellScoreIsTheBranchAndBoundScore) {
+  const BranchAndBoundMatcher matcher(grid_, {});
+  const Pose2 truth(-0.62, 1.35, -2.4);
+  const std::vector<Eigen::Vector2d> points = ScanPoints(truth);
+  const BranchAndBoundResult match = matcher.Match(points, {Pose2(-0.5, 1.3, -2.3), 0.3, 0.2}, 0.0);
+  ASSERT_TRUE(match.found);
+  // The search scores M quantized to 1/255 per point.
+  EXPECT_NEAR(CellScore(grid_, points, match.pose), match.score, 1.0 / 255.0);
+  EXPECT_GT(CellScore(grid_, points, truth), 0.9);
+  EXPECT_LT(CellScore(grid_, points, Pose2(truth.x + 0.5, truth.y, truth.theta + 0.3)), 0.5);
+  EXPECT_EQ(CellScore(grid_, {}, truth), 0.0);
 }
 
 }  // namespace

@@ -21,8 +21,31 @@ bool CeresScanMatcherOptions::Validate(std::string* error) const {
     *error = "max_num_iterations must be >= 1";
     return false;
   }
+  if (!(min_step >= 0.0)) {
+    *error = "min_step must be >= 0";
+    return false;
+  }
   return true;
 }
+
+namespace {
+
+// Ends the solve once an accepted step is below CeresScanMatcherOptions::min_step.
+class SmallStepStop : public ceres::IterationCallback {
+ public:
+  explicit SmallStepStop(double min_step) : min_step_(min_step) {}
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    return summary.iteration > 0 && summary.step_is_successful && summary.step_norm < min_step_
+               ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+               : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  double min_step_;
+};
+
+}  // namespace
 
 double MatchScore(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
                   const Pose2& pose) {
@@ -61,13 +84,16 @@ CeresMatchResult RefineWithCeres(const MatchGrid& grid, const std::vector<Eigen:
   solver.max_num_iterations = options.max_num_iterations;
   solver.num_threads = 1;
   solver.logging_type = ceres::SILENT;
+  SmallStepStop stop(options.min_step);
+  if (options.min_step > 0.0) solver.callbacks.push_back(&stop);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   result.pose = Pose2(pose[0], pose[1], NormalizeAngle(pose[2]));
   result.initial_cost = summary.initial_cost;
   result.final_cost = summary.final_cost;
   result.iterations = static_cast<int>(summary.iterations.size());
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.converged = summary.termination_type == ceres::CONVERGENCE ||
+                     summary.termination_type == ceres::USER_SUCCESS;
   result.score = MatchScore(grid, points, result.pose);
   return result;
 }

@@ -37,4 +37,15 @@ MatchGrid MakeMatchGrid(const MapImage& map, const MatchGridOptions& options) {
   return grid;
 }
 
+double CellScore(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
+                 const Pose2& pose) {
+  if (points.empty()) return 0.0;
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector2d g = grid.ToGrid(pose * p);
+    sum += grid.At(static_cast<int>(std::floor(g.x())), static_cast<int>(std::floor(g.y())));
+  }
+  return sum / static_cast<double>(points.size());
+}
+
 }  // namespace semchain::mapping

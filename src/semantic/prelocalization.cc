@@ -287,6 +287,12 @@ int PreLocalizer::CountAgreeing(const std::vector<ObservedObject>& observed,
   return static_cast<int>(candidate->matches.size());
 }
 
+int PreLocalizer::Agreeing(const std::vector<ObservedObject>& observed, const Pose2& pose) const {
+  PoseCandidate candidate;
+  candidate.pose = pose;
+  return CountAgreeing(observed, &candidate);
+}
+
 std::vector<PoseCandidate> PreLocalizer::Localize(
     const std::vector<ObservedObject>& observed,
     const std::function<double(const Pose2&)>& laser_score, const std::vector<int>* only) const {
@@ -350,6 +356,11 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
       }
     }
   }
+  // The laser rules out most points on the circles: rate only the rest (the agreement with the
+  // other objects costs far more than the laser fit).
+  std::erase_if(candidates, [&](const PoseCandidate& c) {
+    return laser_score(c.pose) < options_.single_object_min_laser_score;
+  });
   Rate(observed, laser_score, options_.single_object_min_laser_score, &candidates);
   return BestDistinct(std::move(candidates));
 }

@@ -62,7 +62,7 @@ struct PreLocalizationOptions {
   // the laser fit they need (higher than min_laser_score: nothing else supports them), and how
   // many of the nearest observations are tried.
   double single_object_step = 0.1;
-  double single_object_min_laser_score = 0.5;
+  double single_object_min_laser_score = 0.3;
   int max_single_objects = 3;
 
   bool Validate(std::string* error) const;
@@ -128,6 +128,10 @@ class PreLocalizer {
   std::vector<std::tuple<int, int, double>> RetrievePairs(const std::string& class_a,
                                                           const std::string& class_b,
                                                           double d) const;
+
+  // How many of 'observed' a robot at 'pose' explains (a mapped object of the observed class
+  // lies where the pose puts it, as for the hypotheses' agreement).
+  int Agreeing(const std::vector<ObservedObject>& observed, const Pose2& pose) const;
 
   const PreLocalizationOptions& options() const { return options_; }
 

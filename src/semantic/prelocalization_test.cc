@@ -138,6 +138,10 @@ TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
       });
   ASSERT_EQ(rated.size(), 1u);
   EXPECT_NEAR((rated[0].pose.translation() - truth.translation()).norm(), 0.0, 1e-4);
+  // What a pose explains: at the truth all three objects, in room A only the look-alike pair.
+  EXPECT_EQ(localizer.Agreeing(pair, truth), 3);
+  EXPECT_EQ(localizer.Agreeing(pair, Pose2(truth.x - 5.0, truth.y, truth.theta)), 2);
+  EXPECT_EQ(localizer.Agreeing(pair, Pose2(truth.x, truth.y, truth.theta + 1.0)), 0);
 }
 
 TEST(PreLocalizerTest, SingleObjectCircleAndLaserGiveThePose) {
