@@ -1,24 +1,17 @@
 #include "eval/reloc_methods.h"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
 #include "core/angles.h"
+#include "core/cpu_time.h"
 #include "io/rgbd_frame_io.h"
 #include "semantic/bow_occlusion.h"
 #include "semantic/orb_features.h"
 
 namespace semchain::eval {
 namespace {
-
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 std::vector<localization::PoseHypothesis> ToHypotheses(
     const std::vector<semantic::PoseCandidate>& candidates) {

@@ -2,19 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <random>
 
 #include "core/angles.h"
 #include "core/check.h"
+#include "core/cpu_time.h"
 #include "localization/amcl.h"
 #include "mapping/prepared_scan.h"
 #include "mapping/ray_casting.h"
 
 namespace semchain::localization {
 namespace {
-
-double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 struct Error {
   double meters = 0.0;
@@ -108,7 +106,7 @@ LogTrial RunAmclTrial(const std::vector<StampedScan>& scans, const LocalizationM
   LogTrial trial;
   trial.trial = t;
   trial.start_scan = span.start;
-  const double cpu_start = CpuSeconds();
+  const double cpu_start = ProcessCpuSeconds();
   Amcl amcl(map, options.amcl, MakeRng(options.seed, 1 + static_cast<std::uint64_t>(t)));
   amcl.InitializeGlobal();
   std::vector<std::pair<int, Error>> history;
@@ -118,7 +116,7 @@ LogTrial RunAmclTrial(const std::vector<StampedScan>& scans, const LocalizationM
       history.emplace_back(i, ErrorOf(amcl.Estimate().pose, s.odometry));
     }
   }
-  trial.cpu_ms = 1000.0 * (CpuSeconds() - cpu_start);
+  trial.cpu_ms = 1000.0 * (ProcessCpuSeconds() - cpu_start);
   runner.Converge(history, span.start, &trial);
   return trial;
 }

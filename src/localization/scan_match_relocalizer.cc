@@ -2,17 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 
 #include "core/angles.h"
 #include "core/check.h"
+#include "core/cpu_time.h"
 
 namespace semchain::localization {
-namespace {
-
-double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
-}  // namespace
 
 bool ScanMatchRelocalizerOptions::Validate(std::string* error) const {
   if (!grid.Validate(error) || !branch_and_bound.Validate(error) || !ceres.Validate(error)) {
@@ -72,10 +67,10 @@ RelocalizationResult ScanMatchRelocalizer::Finish(
   result.score = match.score;
   result.cpu_seconds = match.cpu_seconds;
   if (!match.found) return result;
-  const double start = CpuSeconds();
+  const double start = ProcessCpuSeconds();
   const mapping::CeresMatchResult refined =
       mapping::RefineWithCeres(grid_, points, match.pose, options_.ceres);
-  result.cpu_seconds += CpuSeconds() - start;
+  result.cpu_seconds += ProcessCpuSeconds() - start;
   result.success = true;
   result.coarse_pose = match.pose;
   result.pose = refined.pose;

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 
 #include "core/angles.h"
 #include "core/check.h"
+#include "core/cpu_time.h"
 
 namespace semchain::mapping {
 namespace {
@@ -20,8 +20,6 @@ struct Candidate {
 };
 
 bool Better(const Candidate& a, const Candidate& b) { return a.sum > b.sum; }
-
-double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 }  // namespace
 
@@ -97,10 +95,7 @@ BranchAndBoundMatcher::Discretization BranchAndBoundMatcher::Discretize(
     const Pose2 pose(window.center.x, window.center.y, theta);
     std::vector<Eigen::Vector2i>& cells = d.cells.emplace_back();
     cells.reserve(points.size());
-    for (const Eigen::Vector2d& p : points) {
-      const Eigen::Vector2d g = grid_.ToGrid(pose * p);
-      cells.emplace_back(static_cast<int>(std::floor(g.x())), static_cast<int>(std::floor(g.y())));
-    }
+    for (const Eigen::Vector2d& p : points) cells.push_back(grid_.CellOf(pose * p));
   }
   const int n = static_cast<int>(std::ceil(window.linear_window_meters / grid_.resolution));
   d.min_x = d.min_y = -n;
@@ -111,7 +106,7 @@ BranchAndBoundMatcher::Discretization BranchAndBoundMatcher::Discretize(
 BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vector2d>& points,
                                                   const SearchWindow& window,
                                                   double min_score) const {
-  const double start = CpuSeconds();
+  const double start = ProcessCpuSeconds();
   BranchAndBoundResult result;
   if (points.empty()) return result;
   const Discretization d = Discretize(points, window);
@@ -171,7 +166,7 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
     result.on_linear_edge = d.OnLinearEdge(*best);
     result.on_angular_edge = d.OnAngularEdge(*best);
   }
-  result.cpu_seconds = CpuSeconds() - start;
+  result.cpu_seconds = ProcessCpuSeconds() - start;
   return result;
 }
 
@@ -189,7 +184,7 @@ BranchAndBoundResult BranchAndBoundMatcher::MatchFullMap(const std::vector<Eigen
 
 BranchAndBoundResult BranchAndBoundMatcher::MatchExhaustive(
     const std::vector<Eigen::Vector2d>& points, const SearchWindow& window) const {
-  const double start = CpuSeconds();
+  const double start = ProcessCpuSeconds();
   BranchAndBoundResult result;
   if (points.empty()) return result;
   const Discretization d = Discretize(points, window);
@@ -211,7 +206,7 @@ BranchAndBoundResult BranchAndBoundMatcher::MatchExhaustive(
   result.on_angular_edge = d.OnAngularEdge(best);
   result.score = static_cast<double>(best.sum) / (255.0 * static_cast<double>(points.size()));
   result.angles = static_cast<int>(d.angles.size());
-  result.cpu_seconds = CpuSeconds() - start;
+  result.cpu_seconds = ProcessCpuSeconds() - start;
   return result;
 }
 

@@ -42,8 +42,8 @@ double CellScore(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& poin
   if (points.empty()) return 0.0;
   double sum = 0.0;
   for (const Eigen::Vector2d& p : points) {
-    const Eigen::Vector2d g = grid.ToGrid(pose * p);
-    sum += grid.At(static_cast<int>(std::floor(g.x())), static_cast<int>(std::floor(g.y())));
+    const Eigen::Vector2i cell = grid.CellOf(pose * p);
+    sum += grid.At(cell.x(), cell.y());
   }
   return sum / static_cast<double>(points.size());
 }

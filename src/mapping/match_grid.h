@@ -37,6 +37,11 @@ struct MatchGrid {
   Eigen::Vector2d ToGrid(const Eigen::Vector2d& world) const {
     return (world - origin) / resolution;
   }
+  // The cell 'world' falls in (possibly outside the grid).
+  Eigen::Vector2i CellOf(const Eigen::Vector2d& world) const {
+    const Eigen::Vector2d g = ToGrid(world);
+    return {static_cast<int>(std::floor(g.x())), static_cast<int>(std::floor(g.y()))};
+  }
   Eigen::Vector2d Center() const {
     return origin + 0.5 * resolution * Eigen::Vector2d(width, height);
   }
