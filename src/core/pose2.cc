@@ -22,6 +22,13 @@ Eigen::Vector2d Pose2::operator*(const Eigen::Vector2d& point) const {
   return {x + c * point.x() - s * point.y(), y + s * point.x() + c * point.y()};
 }
 
+Eigen::Isometry2d Pose2::ToIsometry() const {
+  Eigen::Isometry2d transform = Eigen::Isometry2d::Identity();
+  transform.linear() = Eigen::Rotation2Dd(theta).toRotationMatrix();
+  transform.translation() = translation();
+  return transform;
+}
+
 Pose2 Pose2::Inverse() const {
   const double c = std::cos(theta);
   const double s = std::sin(theta);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <iosfwd>
 
 namespace semchain {
@@ -21,6 +22,9 @@ struct Pose2 {
   Pose2 operator*(const Pose2& other) const;
   // Maps a point from this frame into the parent frame.
   Eigen::Vector2d operator*(const Eigen::Vector2d& point) const;
+  // The same transform with its rotation evaluated once, for mapping many points by one pose
+  // (operator* above evaluates cos and sin for every point).
+  Eigen::Isometry2d ToIsometry() const;
   Pose2 Inverse() const;
   // The pose of 'to' in the frame of this pose: this⁻¹ ⊕ to (the ⊖ of Lu & Milios).
   Pose2 Between(const Pose2& to) const;

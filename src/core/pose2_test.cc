@@ -33,6 +33,21 @@ TEST(Pose2Test, ComposeMatchesHandComputedExample) {
   ExpectPoseNear(robot * Pose2(1.0, 0.5, kPi / 2.0), Pose2(0.5, 3.0, kPi));
 }
 
+TEST(Pose2Test, IsometryMapsPointsAsThePose) {
+  const Eigen::Isometry2d robot = Pose2(1.0, 2.0, kPi / 2.0).ToIsometry();
+  const Eigen::Vector2d point = robot * Eigen::Vector2d(1.0, 0.5);
+  EXPECT_NEAR(point.x(), 0.5, 1e-12);
+  EXPECT_NEAR(point.y(), 3.0, 1e-12);
+  Rng rng = MakeRng(3);
+  std::uniform_real_distribution<double> coordinate(-10.0, 10.0);
+  std::uniform_real_distribution<double> angle(-kPi, kPi);
+  for (int i = 0; i < 100; ++i) {
+    const Pose2 pose(coordinate(rng), coordinate(rng), angle(rng));
+    const Eigen::Vector2d p(coordinate(rng), coordinate(rng));
+    EXPECT_LT(((pose.ToIsometry() * p) - pose * p).norm(), 1e-12);
+  }
+}
+
 TEST(Pose2Test, InverseAndBetweenAreConsistent) {
   Rng rng = MakeRng(7);
   std::uniform_real_distribution<double> coordinate(-10.0, 10.0);

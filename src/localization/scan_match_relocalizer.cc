@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/angles.h"
 #include "core/check.h"
@@ -104,21 +105,29 @@ mapping::SearchWindow ScanMatchRelocalizer::WindowOf(const PoseHypothesis& prior
           ? std::clamp(3.0 * std::sqrt(std::max(c(0, 0), c(1, 1))),
                        options_.min_linear_window_meters, options_.max_linear_window_meters)
           : options_.narrow_linear_window_meters;
-  window.angular_window_radians =
-      width.wide_angular
-          ? std::clamp(3.0 * std::sqrt(c(2, 2)), options_.min_angular_window_radians, kPi)
-          : options_.narrow_angular_window_radians;
+  window.angular_window_radians = std::min(
+      WideAngularWindow(prior), width.angular_scale * options_.narrow_angular_window_radians);
   return window;
+}
+
+double ScanMatchRelocalizer::WideAngularWindow(const PoseHypothesis& prior) const {
+  return std::clamp(3.0 * std::sqrt(prior.covariance(2, 2)), options_.min_angular_window_radians,
+                    kPi);
 }
 
 void ScanMatchRelocalizer::SearchPriors(const std::vector<Eigen::Vector2d>& points,
                                         const std::vector<PoseHypothesis>& priors,
-                                        WindowWidth width, PriorSearch* search) const {
+                                        WindowWidth width, const WindowWidth* searched,
+                                        PriorSearch* search) const {
   for (std::size_t i = 0; i < priors.size(); ++i) {
     const double bound =
         std::max(options_.min_score, search->best.found ? search->best.score : 0.0);
-    const mapping::BranchAndBoundResult match =
-        matcher_.Match(points, WindowOf(priors[i], width), bound);
+    mapping::SearchWindow window = WindowOf(priors[i], width);
+    if (searched != nullptr) {
+      window.searched_angular_window_radians =
+          WindowOf(priors[i], *searched).angular_window_radians;
+    }
+    const mapping::BranchAndBoundResult match = matcher_.Match(points, window, bound);
     search->nodes_scored += match.nodes_scored;
     search->angles += match.angles;
     search->cpu_seconds += match.cpu_seconds;
@@ -138,20 +147,40 @@ RelocalizationResult ScanMatchRelocalizer::Relocalize(
 RelocalizationResult ScanMatchRelocalizer::Relocalize(
     const std::vector<Eigen::Vector2d>& points, const std::vector<PoseHypothesis>& priors) const {
   SEMCHAIN_CHECK(ValidateHypotheses(priors).ok());
+  constexpr double kWide = std::numeric_limits<double>::infinity();
   const bool narrow_first = options_.narrow_linear_window_meters > 0.0;
-  WindowWidth width{!narrow_first, !narrow_first};
+  WindowWidth width{!narrow_first, narrow_first ? 1.0 : kWide};
+  double widest_angular = 0.0;  // the wide headings of the widest prior
+  for (const PoseHypothesis& prior : priors) {
+    widest_angular = std::max(widest_angular, WideAngularWindow(prior));
+  }
+  const auto angular_wide = [&](const WindowWidth& w) {
+    return w.angular_scale * options_.narrow_angular_window_radians >= widest_angular;
+  };
   PriorSearch search;
-  SearchPriors(points, priors, width, &search);
+  SearchPriors(points, priors, width, nullptr, &search);
   // Widen where the best match may be cut off by the border (everywhere when nothing matched).
   // The best match's border flags are of the window it was found in; a wider search that finds
-  // nothing better leaves it inside the wider window.
+  // nothing better leaves it inside the wider window in the widened dimension.
   while (true) {
-    const WindowWidth wider{
-        width.wide_linear || !search.best.found || search.best.on_linear_edge,
-        width.wide_angular || !search.best.found || search.best.on_angular_edge};
-    if (wider.wide_linear == width.wide_linear && wider.wide_angular == width.wide_angular) break;
+    const bool found = search.best.found;
+    const bool widen_linear = !width.wide_linear && (!found || search.best.on_linear_edge);
+    const bool widen_angular = !angular_wide(width) && (!found || search.best.on_angular_edge);
+    if (!widen_linear && !widen_angular) break;
+    WindowWidth wider = width;
+    if (!found) {
+      wider = {true, kWide};
+    } else {
+      if (widen_linear) wider.wide_linear = true;
+      if (widen_angular) wider.angular_scale *= 2.0;
+    }
+    const double best_score = search.best.score;
+    SearchPriors(points, priors, wider, widen_linear || !found ? nullptr : &width, &search);
+    if (found && search.best.score == best_score) {
+      if (widen_linear) search.best.on_linear_edge = false;
+      if (widen_angular) search.best.on_angular_edge = false;
+    }
     width = wider;
-    SearchPriors(points, priors, width, &search);
   }
   mapping::BranchAndBoundResult best = search.best;
   best.nodes_scored = search.nodes_scored;
@@ -160,7 +189,7 @@ RelocalizationResult ScanMatchRelocalizer::Relocalize(
   RelocalizationResult result = Finish(points, best);
   result.hypothesis = search.hypothesis;
   result.widened_linear = narrow_first && width.wide_linear;
-  result.widened_angular = narrow_first && width.wide_angular;
+  result.widened_angular = narrow_first && width.angular_scale > 1.0;
   return result;
 }
 

@@ -39,7 +39,9 @@ struct ScanMatchRelocalizerOptions {
   // the windows are widened in both dimensions to the wide windows below; when its best match
   // lies on the border of the translations or of the headings (the optimum may be outside),
   // only in that dimension, again until the best match is inside or the window is wide in
-  // both. A linear window of 0 skips the narrow search.
+  // both: the translations to the wide window, the headings to twice the last ones (at most the
+  // wide window), searching only the headings not searched yet. A linear window of 0 skips the
+  // narrow search.
   double narrow_linear_window_meters = 0.3;
   double narrow_angular_window_radians = 0.07;
   // The wide window is 3σ of the hypothesis' covariance, clamped to these.
@@ -103,18 +105,22 @@ class ScanMatchRelocalizer {
     int angles = 0;
     double cpu_seconds = 0.0;
   };
-  // Which dimensions of the windows around the priors are wide (3σ) rather than narrow.
+  // The windows around the priors: translations narrow or wide (3σ); headings the narrow ones
+  // × angular_scale, at most the wide ones (infinity: wide).
   struct WindowWidth {
     bool wide_linear = false;
-    bool wide_angular = false;
+    double angular_scale = 1.0;
   };
   // Searches a window of the given width around each prior, continuing 'search': a window must
   // beat its best so far (it prunes with it), so a wider search after a narrow one only
   // replaces what the narrow one found by something better.
+  // 'searched' (may be null): the width searched before with the same translations, whose
+  // headings are skipped.
   void SearchPriors(const std::vector<Eigen::Vector2d>& points,
                     const std::vector<PoseHypothesis>& priors, WindowWidth width,
-                    PriorSearch* search) const;
+                    const WindowWidth* searched, PriorSearch* search) const;
   mapping::SearchWindow WindowOf(const PoseHypothesis& prior, WindowWidth width) const;
+  double WideAngularWindow(const PoseHypothesis& prior) const;
   RelocalizationResult Finish(const std::vector<Eigen::Vector2d>& points,
                               const mapping::BranchAndBoundResult& match) const;
 

@@ -28,6 +28,18 @@ class ScanMatchRelocalizerTest : public ::testing::Test {
                            .asDiagonal();
     return prior;
   }
+  // The search of the wide windows alone (no narrow window first).
+  static RelocalizationResult RelocalizeWideOnly(const Pose2& truth, const PoseHypothesis& prior) {
+    ScanMatchRelocalizerOptions wide_only = Options();
+    wide_only.narrow_linear_window_meters = 0.0;
+    const ScanMatchRelocalizer wide_relocalizer(mapping::testing::RoomMap(), wide_only);
+    return wide_relocalizer.Relocalize(Scan(truth), Pose2(), {prior});
+  }
+  static void ExpectPoseNear(const Pose2& a, const Pose2& b, double tolerance) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(AngleDifference(a.theta, b.theta), 0.0, tolerance);
+  }
   // Asserts that 'result' found 'truth' (2 cm, 0.01 rad).
   static void ExpectFound(const RelocalizationResult& result, const Pose2& truth) {
     ASSERT_TRUE(result.success);
@@ -73,24 +85,41 @@ TEST_F(ScanMatchRelocalizerTest, OnlyTheDimensionCutOffByTheBorderIsWidened) {
   EXPECT_TRUE(shifted.widened_linear);
 }
 
+TEST_F(ScanMatchRelocalizerTest, WiderHeadingsSkipTheHeadingsSearchedAlready) {
+  const Pose2 truth(-2.31, 1.17, 2.2);
+  // 0.09 rad off: beyond the narrow headings (0.07), inside twice them; the wide window is 0.3.
+  const PoseHypothesis prior =
+      Prior(Pose2(truth.x + 0.05, truth.y - 0.04, truth.theta + 0.09), 0.2, 0.1);
+  const RelocalizationResult widened = relocalizer_.Relocalize(Scan(truth), Pose2(), {prior});
+  const RelocalizationResult wide = RelocalizeWideOnly(truth, prior);
+  ExpectFound(widened, truth);
+  ASSERT_TRUE(wide.success);
+  EXPECT_TRUE(widened.widened_angular);
+  EXPECT_FALSE(widened.widened_linear);
+  ExpectPoseNear(widened.coarse_pose, wide.coarse_pose, 1e-9);
+  // The narrow headings and then only the ring out to twice them: each heading searched once,
+  // fewer than the wide window's.
+  const mapping::BranchAndBoundMatcher matcher(relocalizer_.grid(), Options().branch_and_bound);
+  mapping::SearchWindow twice{prior.pose, Options().narrow_linear_window_meters,
+                              2.0 * Options().narrow_angular_window_radians};
+  const std::vector<Eigen::Vector2d> points = relocalizer_.MatchPoints(Scan(truth), Pose2());
+  EXPECT_EQ(widened.angles, matcher.MatchExhaustive(points, twice).angles);
+  EXPECT_LT(widened.angles, wide.angles);
+}
+
 TEST_F(ScanMatchRelocalizerTest, AClosePriorIsSettledByTheNarrowWindowWithLessWork) {
   const Pose2 truth(-2.31, 1.17, 2.2);
   PoseHypothesis close;
   close.pose = Pose2(truth.x + 0.08, truth.y - 0.06, truth.theta + 0.03);
   close.covariance = Eigen::Vector3d(0.04, 0.04, 0.01).asDiagonal();
   const RelocalizationResult narrow = relocalizer_.Relocalize(Scan(truth), Pose2(), {close});
-  ScanMatchRelocalizerOptions wide_only = Options();
-  wide_only.narrow_linear_window_meters = 0.0;
-  const ScanMatchRelocalizer wide_relocalizer(mapping::testing::RoomMap(), wide_only);
-  const RelocalizationResult wide = wide_relocalizer.Relocalize(Scan(truth), Pose2(), {close});
+  const RelocalizationResult wide = RelocalizeWideOnly(truth, close);
   ASSERT_TRUE(narrow.success);
   ASSERT_TRUE(wide.success);
   EXPECT_FALSE(narrow.widened_linear);
   EXPECT_FALSE(narrow.widened_angular);
   // The same optimum, found over far fewer headings and nodes.
-  EXPECT_NEAR(narrow.pose.x, wide.pose.x, 1e-3);
-  EXPECT_NEAR(narrow.pose.y, wide.pose.y, 1e-3);
-  EXPECT_NEAR(AngleDifference(narrow.pose.theta, wide.pose.theta), 0.0, 1e-3);
+  ExpectPoseNear(narrow.pose, wide.pose, 1e-3);
   EXPECT_NEAR(narrow.pose.x, truth.x, 0.02);
   EXPECT_NEAR(narrow.pose.y, truth.y, 0.02);
   EXPECT_LT(narrow.angles * 2, wide.angles);

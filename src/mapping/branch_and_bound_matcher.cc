@@ -89,10 +89,16 @@ BranchAndBoundMatcher::Discretization BranchAndBoundMatcher::Discretize(
     for (int i = -n + 1; i <= n; ++i) d.angles.push_back(window.center.theta + i * (kPi / n));
   } else {
     const int n = static_cast<int>(std::ceil(window.angular_window_radians / step));
-    for (int i = -n; i <= n; ++i) d.angles.push_back(window.center.theta + i * step);
+    const int searched =
+        window.searched_angular_window_radians > 0.0
+            ? static_cast<int>(std::ceil(window.searched_angular_window_radians / step))
+            : -1;
+    for (int i = -n; i <= n; ++i) {
+      if (std::abs(i) > searched) d.angles.push_back(window.center.theta + i * step);
+    }
   }
   for (const double theta : d.angles) {
-    const Pose2 pose(window.center.x, window.center.y, theta);
+    const Eigen::Isometry2d pose = Pose2(window.center.x, window.center.y, theta).ToIsometry();
     std::vector<Eigen::Vector2i>& cells = d.cells.emplace_back();
     cells.reserve(points.size());
     for (const Eigen::Vector2d& p : points) cells.push_back(grid_.CellOf(pose * p));

@@ -38,6 +38,10 @@ struct SearchWindow {
   Pose2 center;
   double linear_window_meters = 7.0;     // Cartographer's linear_search_window
   double angular_window_radians = 0.52;  // 30°, Cartographer's angular_search_window
+  // The headings within this of the centre's were searched before with the same translations:
+  // a search widened in heading only skips them (the same angular steps, the same points).
+  // 0 searches them all; ignored when the window covers every heading.
+  double searched_angular_window_radians = 0.0;
 };
 
 struct BranchAndBoundResult {

@@ -24,14 +24,18 @@ std::vector<Eigen::Vector2d> ScanPoints(const Pose2& pose, int step = 4) {
 class BranchAndBoundTest : public ::testing::Test {
  protected:
   BranchAndBoundTest() : grid_(MakeMatchGrid(testing::RoomMap())) {}
+  // A shallow tree and a coarse angular step: small enough to compare with exhaustive search.
+  static BranchAndBoundOptions SmallSearch() {
+    BranchAndBoundOptions options;
+    options.branch_and_bound_depth = 4;
+    options.angular_step_radians = 0.02;
+    return options;
+  }
   MatchGrid grid_;
 };
 
 TEST_F(BranchAndBoundTest, FindsTheExhaustiveOptimumOfTheSameDiscretisation) {
-  BranchAndBoundOptions options;
-  options.branch_and_bound_depth = 4;
-  options.angular_step_radians = 0.02;
-  const BranchAndBoundMatcher matcher(grid_, options);
+  const BranchAndBoundMatcher matcher(grid_, SmallSearch());
   const std::vector<Eigen::Vector2d> points = ScanPoints(Pose2(-1.13, 0.42, 0.31));
   for (const Pose2& center : {Pose2(-1.0, 0.6, 0.4), Pose2(-1.4, 0.2, 0.2)}) {
     SearchWindow window{center, 0.6, 0.2};
@@ -48,6 +52,30 @@ TEST_F(BranchAndBoundTest, FindsTheExhaustiveOptimumOfTheSameDiscretisation) {
     EXPECT_NEAR(fast.pose.theta, 0.31, 0.021);
     EXPECT_LT(fast.nodes_scored, exhaustive.nodes_scored / 4);
   }
+}
+
+TEST_F(BranchAndBoundTest, SkipsTheHeadingsSearchedBefore) {
+  const BranchAndBoundMatcher matcher(grid_, SmallSearch());
+  const std::vector<Eigen::Vector2d> points = ScanPoints(Pose2(-1.13, 0.42, 0.31));
+  // Headings 0.31 ± 0.19 in steps of 0.02: 21; those within ±0.05 (7: up to 3 steps) were
+  // searched.
+  SearchWindow ring{Pose2(-1.1, 0.4, 0.31), 0.3, 0.19};
+  const BranchAndBoundResult all = matcher.Match(points, ring, 0.0);
+  ring.searched_angular_window_radians = 0.05;
+  const BranchAndBoundResult outer = matcher.Match(points, ring, 0.0);
+  EXPECT_EQ(all.angles, 21);
+  EXPECT_EQ(outer.angles, 14);
+  // The optimum lies in the skipped headings: the ring's best is worse and more than 0.06 off.
+  ASSERT_TRUE(outer.found);
+  EXPECT_LT(outer.score, all.score);
+  EXPECT_GT(std::abs(AngleDifference(outer.pose.theta, 0.31)), 0.06);
+  // Centred 0.1 rad away, the optimum is in the ring: found as without skipping.
+  SearchWindow shifted{Pose2(-1.1, 0.4, 0.41), 0.3, 0.19};
+  const BranchAndBoundResult shifted_all = matcher.Match(points, shifted, 0.0);
+  shifted.searched_angular_window_radians = 0.05;
+  const BranchAndBoundResult shifted_outer = matcher.Match(points, shifted, 0.0);
+  EXPECT_DOUBLE_EQ(shifted_outer.score, shifted_all.score);
+  EXPECT_NEAR(shifted_outer.pose.theta, shifted_all.pose.theta, 1e-9);
 }
 
 TEST_F(BranchAndBoundTest, MinimumScoreRejectsAWrongScan) {
@@ -73,10 +101,7 @@ TEST_F(BranchAndBoundTest, FullMapSearchFindsThePoseWithoutAPrior) {
 }
 
 TEST_F(BranchAndBoundTest, SaysWhenTheBestPoseLiesOnTheWindowEdge) {
-  BranchAndBoundOptions options;
-  options.branch_and_bound_depth = 4;
-  options.angular_step_radians = 0.02;
-  const BranchAndBoundMatcher matcher(grid_, options);
+  const BranchAndBoundMatcher matcher(grid_, SmallSearch());
   const Pose2 truth(-1.13, 0.42, 0.31);
   const std::vector<Eigen::Vector2d> points = ScanPoints(truth);
   // The truth inside the window: an interior optimum.

@@ -40,9 +40,10 @@ MatchGrid MakeMatchGrid(const MapImage& map, const MatchGridOptions& options) {
 double CellScore(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
                  const Pose2& pose) {
   if (points.empty()) return 0.0;
+  const Eigen::Isometry2d transform = pose.ToIsometry();
   double sum = 0.0;
   for (const Eigen::Vector2d& p : points) {
-    const Eigen::Vector2i cell = grid.CellOf(pose * p);
+    const Eigen::Vector2i cell = grid.CellOf(transform * p);
     sum += grid.At(cell.x(), cell.y());
   }
   return sum / static_cast<double>(points.size());

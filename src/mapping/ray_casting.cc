@@ -48,7 +48,8 @@ bool ScanInserter::Mark(const Eigen::Vector2i& cell) {
 
 void ScanInserter::Insert(const PreparedScan& scan, const Pose2& pose, OccupancyGrid* grid) {
   const double inverse_resolution = 1.0 / grid->resolution();
-  const Eigen::Vector2d sensor_world = pose * scan.sensor_origin;
+  const Eigen::Isometry2d transform = pose.ToIsometry();
+  const Eigen::Vector2d sensor_world = transform * scan.sensor_origin;
   // Grid coordinates (cell units) of the sensor and of every endpoint.
   auto to_grid = [&](const Eigen::Vector2d& world) -> Eigen::Vector2d {
     return (world - grid->origin()) * inverse_resolution;
@@ -57,7 +58,7 @@ void ScanInserter::Insert(const PreparedScan& scan, const Pose2& pose, Occupancy
   Eigen::Vector2d lo = sensor, hi = sensor;
   std::vector<Eigen::Vector2d> ends(scan.beams.size());
   for (std::size_t i = 0; i < scan.beams.size(); ++i) {
-    ends[i] = to_grid(pose * scan.beams[i].endpoint);
+    ends[i] = to_grid(transform * scan.beams[i].endpoint);
     lo = lo.cwiseMin(ends[i]);
     hi = hi.cwiseMax(ends[i]);
   }
@@ -75,7 +76,7 @@ void ScanInserter::Insert(const PreparedScan& scan, const Pose2& pose, Occupancy
     if (!scan.beams[i].hit) continue;
     const Eigen::Vector2i cell(static_cast<int>(std::floor(ends[i].x())),
                                static_cast<int>(std::floor(ends[i].y())));
-    if (Mark(cell)) grid->AddHit(cell, pose * scan.beams[i].endpoint);
+    if (Mark(cell)) grid->AddHit(cell, transform * scan.beams[i].endpoint);
   }
   for (std::size_t i = 0; i < scan.beams.size(); ++i) {
     ray_.clear();

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
-#include <set>
 
 #include "core/angles.h"
 #include "core/transforms.h"
@@ -130,7 +129,15 @@ PreLocalizer::PreLocalizer(const SemanticMap& map, const mapping::MapImage& occu
                            const PreLocalizationOptions& options)
     : objects_(map.objects), occupancy_(occupancy), options_(options) {
   for (std::size_t o = 0; o < objects_.size(); ++o) {
-    index_of_id_[objects_[o].id] = static_cast<int>(o);
+    const SemanticObject& object = objects_[o];
+    index_of_id_[object.id] = static_cast<int>(o);
+    objects_of_class_[object.class_name].push_back(static_cast<int>(o));
+    double radius = 0.0;
+    for (const Eigen::Vector2d& corner : object.footprint) {
+      radius = std::max(radius, (corner - object.center).norm());
+    }
+    outline_radius_.push_back(radius);
+    mean_behind_.push_back(MeanCenterBehindSurface(object));
   }
   for (std::size_t a = 0; a < objects_.size(); ++a) {
     for (std::size_t b = 0; b < objects_.size(); ++b) {
@@ -207,8 +214,8 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
   const double slack =
       options_.circle_slack + options_.circle_slack_per_metre * (si.range + sj.range);
   const int count = IntersectCircles(
-      oa.center, centre_in_robot(si, MeanCenterBehindSurface(oa)).norm(), ob.center,
-      centre_in_robot(sj, MeanCenterBehindSurface(ob)).norm(), slack, points);
+      oa.center, centre_in_robot(si, mean_behind_[static_cast<std::size_t>(a)]).norm(), ob.center,
+      centre_in_robot(sj, mean_behind_[static_cast<std::size_t>(b)]).norm(), slack, points);
   for (int k = 0; k < count; ++k) {
     // Refine with the depth behind the surface seen from this position (a fixed point: the
     // depth depends on the direction, the direction on the position).
@@ -262,27 +269,37 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
 
 int PreLocalizer::CountAgreeing(const std::vector<ObservedObject>& observed,
                                 PoseCandidate* candidate) const {
-  std::set<int> used;
+  std::vector<int> used;
   candidate->matches.clear();
+  const Eigen::Isometry2d world_from_robot = candidate->pose.ToIsometry();
   for (std::size_t k = 0; k < observed.size(); ++k) {
     const ObservedObject& s = observed[k];
-    const Eigen::Vector2d surface = candidate->pose * s.surface;
+    const auto of_class = objects_of_class_.find(s.class_name);
+    if (of_class == objects_of_class_.end()) continue;
+    const Eigen::Vector2d surface = world_from_robot * s.surface;
     const Eigen::Vector2d ray = Unit(surface - candidate->pose.translation());
     int best = -1;
     double best_error = options_.agreement_radius + options_.agreement_per_metre * s.range;
-    for (std::size_t o = 0; o < objects_.size(); ++o) {
-      const SemanticObject& object = objects_[o];
-      if (object.class_name != s.class_name || used.count(static_cast<int>(o))) continue;
+    for (const int o : of_class->second) {
+      const SemanticObject& object = objects_[static_cast<std::size_t>(o)];
+      // The centre lies at most the outline's radius behind the surface: an object farther than
+      // that plus the best error cannot do better (most of a large map).
+      if ((surface - object.center).norm() - outline_radius_[static_cast<std::size_t>(o)] >=
+          best_error) {
+        continue;
+      }
+      if (std::find(used.begin(), used.end(), o) != used.end()) continue;
       const Eigen::Vector2d centre = surface + CenterBehindSurface(object, -ray) * ray;
       const double error = (centre - object.center).norm();
       if (error < best_error) {
         best_error = error;
-        best = static_cast<int>(o);
+        best = o;
       }
     }
     if (best < 0) continue;
-    used.insert(best);
-    candidate->matches.emplace_back(static_cast<int>(k), objects_[best].id);
+    used.push_back(best);
+    candidate->matches.emplace_back(static_cast<int>(k),
+                                    objects_[static_cast<std::size_t>(best)].id);
   }
   return static_cast<int>(candidate->matches.size());
 }
@@ -332,9 +349,11 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
   }
   for (const ObservedObject* s : nearest) {
     const Eigen::Vector2d ray = Unit(s->surface);
-    for (const SemanticObject& object : objects_) {
-      if (object.class_name != s->class_name) continue;
-      const double radius = (s->surface + MeanCenterBehindSurface(object) * ray).norm();
+    const auto of_class = objects_of_class_.find(s->class_name);
+    if (of_class == objects_of_class_.end()) continue;
+    for (const int o : of_class->second) {
+      const SemanticObject& object = objects_[static_cast<std::size_t>(o)];
+      const double radius = (s->surface + mean_behind_[static_cast<std::size_t>(o)] * ray).norm();
       const int samples = std::max(
           8, static_cast<int>(std::ceil(2.0 * M_PI * radius / options_.single_object_step)));
       for (int k = 0; k < samples; ++k) {

@@ -156,7 +156,13 @@ class PreLocalizer {
             std::vector<PoseCandidate>* candidates) const;
 
   std::vector<SemanticObject> objects_;
-  std::map<int, int> index_of_id_;  // object id → index into objects_
+  std::map<int, int> index_of_id_;                            // object id → index into objects_
+  std::map<std::string, std::vector<int>> objects_of_class_;  // indices into objects_
+  // Per object: the largest distance from its centre to its outline (a bound on the centre's
+  // depth behind any surface seen) and the mean over directions (the depth behind a surface
+  // seen from an unknown side).
+  std::vector<double> outline_radius_;
+  std::vector<double> mean_behind_;
   std::map<std::pair<std::string, std::string>, std::vector<IndexedPair>> pairs_;
   mapping::MapImage occupancy_;
   cv::Mat clearance_;  // CV_32F metres to the nearest non-free cell, row = cell y
