@@ -131,10 +131,10 @@ class MethodRun {
 
   std::vector<semantic::PoseCandidate> PreLocalize(
       const StampedScan& scan, const std::vector<semantic::ObservedObject>& observed,
-      RelocTrace* trace) const {
+      RelocTrace* trace, int min_agreeing = 0) const {
     if (observed.size() < 2) return {};
     std::vector<semantic::PoseCandidate> candidates =
-        map_.prelocalizer.Localize(observed, LaserScorer(scan));
+        map_.prelocalizer.Localize(observed, LaserScorer(scan), nullptr, min_agreeing);
     ++trace->prelocalizations;
     NoteFirstHypothesis(candidates, trace);
     return candidates;
@@ -261,12 +261,15 @@ class MethodRun {
   // tracked pose and the best match is kept. Returns whether the robot was moved.
   bool RecheckLock(const StampedScan& scan, const RelocFrame& frame, RelocTrace* trace) {
     const std::vector<semantic::ObservedObject> observed = Observe(scan, frame);
-    const std::vector<semantic::PoseCandidate> candidates = PreLocalize(scan, observed, trace);
-    if (candidates.empty()) return false;
+    if (observed.size() < 2) return false;
+    // Only poses explaining more than the tracked one are of interest: the others are dropped
+    // before the laser rates them.
     const int explained = map_.prelocalizer.Agreeing(observed, *estimate_);
+    const std::vector<semantic::PoseCandidate> candidates =
+        PreLocalize(scan, observed, trace, explained + 1);
     std::vector<semantic::PoseCandidate> better;
     for (const semantic::PoseCandidate& c : candidates) {
-      if (c.agreeing > explained && AnotherPlace(c.pose, *estimate_)) better.push_back(c);
+      if (AnotherPlace(c.pose, *estimate_)) better.push_back(c);
     }
     if (better.empty()) return false;
     std::vector<localization::PoseHypothesis> priors = ToHypotheses(better);

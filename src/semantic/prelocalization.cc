@@ -312,7 +312,8 @@ int PreLocalizer::Agreeing(const std::vector<ObservedObject>& observed, const Po
 
 std::vector<PoseCandidate> PreLocalizer::Localize(
     const std::vector<ObservedObject>& observed,
-    const std::function<double(const Pose2&)>& laser_score, const std::vector<int>* only) const {
+    const std::function<double(const Pose2&)>& laser_score, const std::vector<int>* only,
+    int min_agreeing) const {
   const auto allowed = [only](int id) {
     return only == nullptr || std::find(only->begin(), only->end(), id) != only->end();
   };
@@ -331,7 +332,7 @@ std::vector<PoseCandidate> PreLocalizer::Localize(
       }
     }
   }
-  Rate(observed, laser_score, options_.min_laser_score, &candidates);
+  Rate(observed, laser_score, options_.min_laser_score, min_agreeing, &candidates);
   return BestDistinct(std::move(candidates));
 }
 
@@ -380,7 +381,7 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
   std::erase_if(candidates, [&](const PoseCandidate& c) {
     return laser_score(c.pose) < options_.single_object_min_laser_score;
   });
-  Rate(observed, laser_score, options_.single_object_min_laser_score, &candidates);
+  Rate(observed, laser_score, options_.single_object_min_laser_score, 0, &candidates);
   return BestDistinct(std::move(candidates));
 }
 
@@ -425,16 +426,20 @@ void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
 
 void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
                         const std::function<double(const Pose2&)>& laser_score,
-                        double min_laser_score, std::vector<PoseCandidate>* candidates) const {
+                        double min_laser_score, int min_agreeing,
+                        std::vector<PoseCandidate>* candidates) const {
   for (PoseCandidate& candidate : *candidates) {
     candidate.agreeing = CountAgreeing(observed, &candidate);
     if (options_.refine) {
       Refine(observed, &candidate);
       candidate.agreeing = CountAgreeing(observed, &candidate);
     }
-    if (laser_score) candidate.laser_score = laser_score(candidate.pose);
   }
+  std::erase_if(*candidates,
+                [min_agreeing](const PoseCandidate& c) { return c.agreeing < min_agreeing; });
   if (laser_score) {
+    for (PoseCandidate& candidate : *candidates)
+      candidate.laser_score = laser_score(candidate.pose);
     std::erase_if(*candidates, [min_laser_score](const PoseCandidate& c) {
       return c.laser_score < min_laser_score;
     });

@@ -109,10 +109,13 @@ class PreLocalizer {
   // Hypotheses for a frame's observed objects (at least two needed), best first.
   // 'laser_score' (may be empty) rates a pose by the current laser scan, higher is better.
   // 'only' (may be null) restricts the mapped pairs to these object ids (e.g. the chain
-  // neighbours of an object the bag of words found hidden).
+  // neighbours of an object the bag of words found hidden). Hypotheses that explain fewer than
+  // 'min_agreeing' of the observed objects are dropped before the laser rates them (a caller
+  // that only wants poses explaining more than one it has).
   std::vector<PoseCandidate> Localize(const std::vector<ObservedObject>& observed,
                                       const std::function<double(const Pose2&)>& laser_score = {},
-                                      const std::vector<int>* only = nullptr) const;
+                                      const std::vector<int>* only = nullptr,
+                                      int min_agreeing = 0) const;
 
   // Hypotheses from single objects, for when no two objects in view form a mapped pair (a
   // corridor where the objects are far apart): the robot lies on the circle around each mapped
@@ -150,10 +153,11 @@ class PreLocalizer {
   int CountAgreeing(const std::vector<ObservedObject>& observed, PoseCandidate* candidate) const;
   // Least-squares pose over the candidate's matches (see PreLocalizationOptions::refine).
   void Refine(const std::vector<ObservedObject>& observed, PoseCandidate* candidate) const;
-  // Agreement, refinement and laser score of every candidate; drops what the laser rules out.
+  // Agreement and refinement of every candidate; drops those agreeing with fewer than
+  // 'min_agreeing' objects, then rates the rest by the laser and drops what it rules out.
   void Rate(const std::vector<ObservedObject>& observed,
             const std::function<double(const Pose2&)>& laser_score, double min_laser_score,
-            std::vector<PoseCandidate>* candidates) const;
+            int min_agreeing, std::vector<PoseCandidate>* candidates) const;
 
   std::vector<SemanticObject> objects_;
   std::map<int, int> index_of_id_;                            // object id → index into objects_

@@ -131,6 +131,10 @@ TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
   EXPECT_NEAR((three[0].pose.translation() - truth.translation()).norm(), 0.0, 1e-4);
   EXPECT_EQ(three[0].agreeing, 3);
   EXPECT_LT(three[1].agreeing, 3);
+  // Asked for poses explaining all three, only room B is left.
+  const auto all_three = localizer.Localize(pair, {}, nullptr, 3);
+  ASSERT_EQ(all_three.size(), 1u);
+  EXPECT_NEAR((all_three[0].pose.translation() - truth.translation()).norm(), 0.0, 1e-4);
   // A laser score breaks ties when the objects cannot, and rules out places it does not fit.
   const auto rated = localizer.Localize(
       {See(truth, map.objects[2]), See(truth, map.objects[3])}, [&truth](const Pose2& pose) {
