@@ -115,10 +115,11 @@ double ScanMatchRelocalizer::WideAngularWindow(const PoseHypothesis& prior) cons
                     kPi);
 }
 
-void ScanMatchRelocalizer::SearchPriors(const std::vector<Eigen::Vector2d>& points,
+bool ScanMatchRelocalizer::SearchPriors(const std::vector<Eigen::Vector2d>& points,
                                         const std::vector<PoseHypothesis>& priors,
                                         WindowWidth width, const WindowWidth* searched,
                                         PriorSearch* search) const {
+  bool improved = false;
   for (std::size_t i = 0; i < priors.size(); ++i) {
     const double bound =
         std::max(options_.min_score, search->best.found ? search->best.score : 0.0);
@@ -134,8 +135,10 @@ void ScanMatchRelocalizer::SearchPriors(const std::vector<Eigen::Vector2d>& poin
     if (match.found && (!search->best.found || match.score > search->best.score)) {
       search->best = match;
       search->hypothesis = static_cast<int>(i);
+      improved = true;
     }
   }
+  return improved;
 }
 
 RelocalizationResult ScanMatchRelocalizer::Relocalize(
@@ -174,9 +177,9 @@ RelocalizationResult ScanMatchRelocalizer::Relocalize(
       if (widen_linear) wider.wide_linear = true;
       if (widen_angular) wider.angular_scale *= 2.0;
     }
-    const double best_score = search.best.score;
-    SearchPriors(points, priors, wider, widen_linear || !found ? nullptr : &width, &search);
-    if (found && search.best.score == best_score) {
+    const bool improved =
+        SearchPriors(points, priors, wider, widen_linear || !found ? nullptr : &width, &search);
+    if (found && !improved) {
       if (widen_linear) search.best.on_linear_edge = false;
       if (widen_angular) search.best.on_angular_edge = false;
     }

@@ -115,8 +115,8 @@ class ScanMatchRelocalizer {
   // beat its best so far (it prunes with it), so a wider search after a narrow one only
   // replaces what the narrow one found by something better.
   // 'searched' (may be null): the width searched before with the same translations, whose
-  // headings are skipped.
-  void SearchPriors(const std::vector<Eigen::Vector2d>& points,
+  // headings are skipped. Returns whether a better match was found.
+  bool SearchPriors(const std::vector<Eigen::Vector2d>& points,
                     const std::vector<PoseHypothesis>& priors, WindowWidth width,
                     const WindowWidth* searched, PriorSearch* search) const;
   mapping::SearchWindow WindowOf(const PoseHypothesis& prior, WindowWidth width) const;
