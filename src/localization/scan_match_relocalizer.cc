@@ -75,7 +75,6 @@ RelocalizationResult ScanMatchRelocalizer::Finish(
   result.success = true;
   result.coarse_pose = match.pose;
   result.pose = refined.pose;
-  result.refined_score = refined.score;
   return result;
 }
 

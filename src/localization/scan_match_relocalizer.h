@@ -57,7 +57,6 @@ struct RelocalizationResult {
   Pose2 pose;            // refined pose (valid when success)
   Pose2 coarse_pose;     // branch-and-bound pose
   double score = 0.0;    // branch-and-bound score of the best match (also when it failed)
-  double refined_score = 0.0;
   int hypothesis = -1;  // which prior hypothesis won (-1: global search)
   // The narrow windows did not settle it: wider ones were searched in translation, in heading
   // or in both.

@@ -4,6 +4,7 @@
 
 #include "core/angles.h"
 #include "mapping/ceres_scan_matcher.h"
+#include "mapping/occupied_space_cost.h"
 #include "mapping/testing/synthetic_map.h"
 
 namespace semchain::mapping {
@@ -138,7 +139,36 @@ TEST_F(BranchAndBoundTest, CeresRefinementRecoversASmallOffset) {
   EXPECT_NEAR(result.pose.y, truth.y, 0.01);
   EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.004);
   EXPECT_LT(result.final_cost, result.initial_cost);
-  EXPECT_GT(result.score, MatchScore(grid_, points, start));
+  EXPECT_GT(MatchScore(grid_, points, result.pose), MatchScore(grid_, points, start));
+}
+
+TEST_F(BranchAndBoundTest, OccupiedSpaceJacobianMatchesCentralDifferences) {
+  const Pose2 truth(0.37, -2.11, 1.2);
+  const std::vector<Eigen::Vector2d> points = ScanPoints(truth, 8);
+  const OccupiedSpaceCost cost(grid_, points, 1.0);
+  const std::size_t n = points.size();
+  const auto evaluate = [&](const Eigen::Vector3d& pose, double* jacobian) {
+    std::vector<double> residuals(n);
+    const double* blocks[1] = {pose.data()};
+    double* jacobians[1] = {jacobian};
+    EXPECT_TRUE(cost.Evaluate(blocks, residuals.data(), jacobian ? jacobians : nullptr));
+    return Eigen::Map<Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(n)).eval();
+  };
+  // Off the walls, where M is steep in every direction.
+  const Eigen::Vector3d pose(truth.x + 0.023, truth.y - 0.017, truth.theta + 0.02);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> analytic(n, 3);
+  const Eigen::VectorXd residuals = evaluate(pose, analytic.data());
+  EXPECT_TRUE(residuals.isApprox(evaluate(pose, nullptr)));
+  constexpr double kStep = 1e-6;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d step = kStep * Eigen::Vector3d::Unit(k);
+    const Eigen::VectorXd numeric =
+        (evaluate(pose + step, nullptr) - evaluate(pose - step, nullptr)) / (2.0 * kStep);
+    EXPECT_GT(numeric.cwiseAbs().maxCoeff(), 0.1) << "parameter " << k;
+    EXPECT_LT((analytic.col(k) - numeric).cwiseAbs().maxCoeff(),
+              1e-5 * numeric.cwiseAbs().maxCoeff())
+        << "parameter " << k;
+  }
 }
 
 TEST_F(BranchAndBoundTest, CeresStopsOnASmallStepCloseToTheFullSolve) {

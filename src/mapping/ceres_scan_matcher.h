@@ -8,8 +8,8 @@
 #include "mapping/match_grid.h"
 
 // Scan-to-map refinement with Ceres (seed 001 §2.2, Cartographer's CeresScanMatcher2D):
-// argmin_T Σ (1 − M(S_i(T)))² on the bicubic-interpolated match grid, with automatic
-// differentiation, starting from an initial pose (the branch-and-bound result or a prior).
+// argmin_T Σ (1 − M(S_i(T)))² on the bicubic-interpolated match grid (analytic Jacobian,
+// OccupiedSpaceCost), starting from an initial pose (the branch-and-bound result or a prior).
 namespace semchain::mapping {
 
 struct CeresScanMatcherOptions {
@@ -20,10 +20,14 @@ struct CeresScanMatcherOptions {
   double rotation_weight = 0.0;
   int max_num_iterations = 20;
   // The refinement ends once an accepted step moves the pose by less than this (the norm of
-  // (dx, dy, dθ), metres and radians): a fiftieth of a 5 cm cell. Ceres' own parameter
-  // tolerance is relative to the pose's magnitude, i.e. to where the map's origin happens to be.
-  // 0 leaves the stop to Ceres' tolerances (two more iterations on the FR079 benchmark, 0.2 mm).
-  double min_step = 1e-3;
+  // (dx, dy, dθ), metres and radians): a tenth of a 5 cm cell. Ceres' own parameter tolerance
+  // is relative to the pose's magnitude, i.e. to where the map's origin happens to be. Near the
+  // optimum the steps shrink slowly (the cost is far from quadratic) and each costs two passes
+  // over the returns: on 40 noiseless scans of the synthetic room started up to 2.5 cm off,
+  // 5 mm stops after 3.8 iterations instead of 6.2 (1 mm) or 10.1 (Ceres' tolerances), 2.4 mm
+  // on average from the full solve, 3.8 mm from the truth instead of 3.4 mm.
+  // 0 leaves the stop to Ceres' tolerances.
+  double min_step = 5e-3;
 
   bool Validate(std::string* error) const;
 };
@@ -32,7 +36,6 @@ struct CeresMatchResult {
   Pose2 pose;
   double initial_cost = 0.0;  // Ceres' ½ Σ r² at the initial pose and at the result
   double final_cost = 0.0;
-  double score = 0.0;  // mean bicubic-interpolated M over the points at 'pose'
   int iterations = 0;
   bool converged = false;  // stopped on a tolerance or min_step, not on the iteration limit
 };
@@ -41,7 +44,8 @@ struct CeresMatchResult {
 CeresMatchResult RefineWithCeres(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
                                  const Pose2& initial, const CeresScanMatcherOptions& options = {});
 
-// Mean bicubic-interpolated M over 'points' placed at 'pose'.
+// Mean bicubic-interpolated M over 'points' placed at 'pose' (one more pass over the points:
+// the refinement does not compute it for callers that do not ask).
 double MatchScore(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
                   const Pose2& pose);
 
