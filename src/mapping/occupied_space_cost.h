@@ -1,6 +1,5 @@
 #pragma once
 
-#include <ceres/cost_function.h>
 #include <ceres/cubic_interpolation.h>
 
 #include <Eigen/Core>
@@ -15,12 +14,11 @@
 // that the cost does not grow with the number of returns.
 //
 // The Jacobian is analytic: the interpolator gives M's gradient with its value, and the chain
-// through the rigid motion is three products a point. Automatic differentiation carried a
-// three-part Jet through every product of the cubic splines, about a third of the refinement's
-// time (the cost runs once per Ceres iteration over every return).
+// through the rigid motion is three products a point (with automatic differentiation the
+// refinement took a few per cent longer on the FR079 benchmark).
 namespace semchain::mapping {
 
-class OccupiedSpaceCost final : public ceres::CostFunction {
+class OccupiedSpaceCost {
  public:
   using Grid = ceres::Grid2D<float, 1>;
 
@@ -33,20 +31,18 @@ class OccupiedSpaceCost final : public ceres::CostFunction {
         // Rows are y, columns x; outside the grid Grid2D repeats the border, which is free
         // space (M ≈ 0) in a map with a margin.
         adapter_(grid.values.data(), 0, grid.height, 0, grid.width),
-        interpolator_(adapter_) {
-    set_num_residuals(static_cast<int>(points.size()));
-    mutable_parameter_block_sizes()->push_back(3);
-  }
+        interpolator_(adapter_) {}
 
-  // parameters[0] = (x, y, θ); jacobians[0], when asked for, is row-major N × 3.
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const double* pose = parameters[0];
+  int NumResiduals() const { return static_cast<int>(points_.size()); }
+
+  // The residuals at 'pose' = (x, y, θ) and, unless 'jacobian' is null, their N × 3 Jacobian in
+  // column-major order (ceres::TinySolver's layout).
+  bool operator()(const double* pose, double* residuals, double* jacobian) const {
     const double c = std::cos(pose[2]);
     const double s = std::sin(pose[2]);
     const double inverse = 1.0 / grid_.resolution;
-    double* jacobian = jacobians != nullptr ? jacobians[0] : nullptr;
-    for (std::size_t i = 0; i < points_.size(); ++i) {
+    const std::size_t n = points_.size();
+    for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Vector2d& p = points_[i];
       const double rotated_x = c * p.x() - s * p.y();
       const double rotated_y = s * p.x() + c * p.y();
@@ -55,7 +51,7 @@ class OccupiedSpaceCost final : public ceres::CostFunction {
       const double row = (pose[1] + rotated_y - grid_.origin.y()) * inverse - 0.5;
       double m = 0.0;
       if (jacobian == nullptr) {
-        // Ceres asks for the cost alone at each candidate step.
+        // The solver asks for the cost alone at each candidate step.
         interpolator_.Evaluate(row, column, &m);
         residuals[i] = scale_ * (1.0 - m);
       } else {
@@ -67,9 +63,9 @@ class OccupiedSpaceCost final : public ceres::CostFunction {
         // (−rotated_y, rotated_x).
         const double dr_dx = -scale_ * inverse * dm_dcolumn;
         const double dr_dy = -scale_ * inverse * dm_drow;
-        jacobian[3 * i + 0] = dr_dx;
-        jacobian[3 * i + 1] = dr_dy;
-        jacobian[3 * i + 2] = dr_dy * rotated_x - dr_dx * rotated_y;
+        jacobian[i] = dr_dx;
+        jacobian[n + i] = dr_dy;
+        jacobian[2 * n + i] = dr_dy * rotated_x - dr_dx * rotated_y;
       }
     }
     return true;
@@ -81,29 +77,6 @@ class OccupiedSpaceCost final : public ceres::CostFunction {
   double scale_;
   Grid adapter_;
   ceres::BiCubicInterpolator<Grid> interpolator_;
-};
-
-// Pulls the pose towards 'target' (Cartographer's translation and rotation delta costs): three
-// residuals weight × (x − x₀), weight × (y − y₀), weight × (θ − θ₀).
-class PoseDeltaCost {
- public:
-  PoseDeltaCost(const Eigen::Vector3d& target, double translation_weight, double rotation_weight)
-      : target_(target),
-        translation_weight_(translation_weight),
-        rotation_weight_(rotation_weight) {}
-
-  template <typename T>
-  bool operator()(const T* const pose, T* residuals) const {
-    residuals[0] = translation_weight_ * (pose[0] - target_.x());
-    residuals[1] = translation_weight_ * (pose[1] - target_.y());
-    residuals[2] = rotation_weight_ * (pose[2] - target_.z());
-    return true;
-  }
-
- private:
-  Eigen::Vector3d target_;
-  double translation_weight_;
-  double rotation_weight_;
 };
 
 }  // namespace semchain::mapping

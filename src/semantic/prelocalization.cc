@@ -16,8 +16,10 @@ namespace {
 // Mapped pairs farther apart than this are never seen together by a camera of a few metres'
 // range; not indexing them keeps the index small on large maps.
 constexpr double kMaxPairDistance = 15.0;
-// Fixed-point iterations of the centre-behind-surface correction.
+// Fixed-point iterations of the centre-behind-surface correction, at most, and the move of the
+// position below which it has settled (the depth changes little with the direction seen from).
 constexpr int kRefinements = 4;
+constexpr double kSettledMeters = 1e-3;
 
 Eigen::Vector2d Unit(const Eigen::Vector2d& v) {
   const double n = v.norm();
@@ -222,7 +224,7 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
     Eigen::Vector2d x = points[k];
     Eigen::Vector2d pi, pj;
     bool lost = false;
-    for (int iteration = 0; iteration < kRefinements && !lost; ++iteration) {
+    for (int iteration = 0; iteration < kRefinements; ++iteration) {
       pi = centre_in_robot(si, CenterBehindSurface(oa, Unit(x - oa.center)));
       pj = centre_in_robot(sj, CenterBehindSurface(ob, Unit(x - ob.center)));
       Eigen::Vector2d refined[2];
@@ -231,7 +233,11 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
         lost = true;
         break;
       }
-      x = n == 2 && (refined[1] - x).norm() < (refined[0] - x).norm() ? refined[1] : refined[0];
+      const Eigen::Vector2d next =
+          n == 2 && (refined[1] - x).norm() < (refined[0] - x).norm() ? refined[1] : refined[0];
+      const bool settled = (next - x).norm() < kSettledMeters;
+      x = next;
+      if (settled) break;
     }
     if (lost) continue;
     // The heading each bearing gives at a position; the mirror solution disagrees.
@@ -256,8 +262,9 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
       Refine(observed, &candidate);
       candidate.matches.clear();
     }
-    if (!headings_agree(candidate.pose.translation())) continue;
+    // Free space first: one cell read, where the bearings take four arc tangents.
     if (!InFreeSpace(candidate.pose.translation())) continue;
+    if (!headings_agree(candidate.pose.translation())) continue;
     const double sigma =
         options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
     candidate.covariance =
