@@ -57,7 +57,7 @@ struct RelocalizationResult {
   Pose2 pose;            // refined pose (valid when success)
   Pose2 coarse_pose;     // branch-and-bound pose
   double score = 0.0;    // branch-and-bound score of the best match (also when it failed)
-  int hypothesis = -1;  // which prior hypothesis won (-1: global search)
+  int hypothesis = -1;   // which prior hypothesis won (-1: global search)
   // The narrow windows did not settle it: wider ones were searched in translation, in heading
   // or in both.
   bool widened_linear = false;
