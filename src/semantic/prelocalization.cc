@@ -38,8 +38,14 @@ double MeanCenterBehindSurface(const SemanticObject& object) {
   return sum / kDirections;
 }
 
-double CircularMean(double a, double b) {
-  return std::atan2(std::sin(a) + std::sin(b), std::cos(a) + std::cos(b));
+// The robot heading, as (cos, sin), that turns the direction 'seen' (robot frame) into the
+// direction from 'at' to 'centre' (world): the complex product of the one by the conjugate of
+// the other. Headings compared and averaged this way need no arc tangent.
+Eigen::Vector2d HeadingFrom(const Eigen::Vector2d& at, const Eigen::Vector2d& centre,
+                            const Eigen::Vector2d& seen) {
+  const Eigen::Vector2d world = Unit(centre - at);
+  const Eigen::Vector2d robot = Unit(seen);
+  return {world.dot(robot), robot.x() * world.y() - robot.y() * world.x()};
 }
 
 }  // namespace
@@ -117,12 +123,21 @@ double CenterBehindSurface(const SemanticObject& object, const Eigen::Vector2d& 
   for (std::size_t k = 0; k < polygon.size(); ++k) {
     const Eigen::Vector2d a = polygon[k] - object.center;
     const Eigen::Vector2d e = polygon[(k + 1) % polygon.size()] - polygon[k];
-    // Solve t·direction = a + s·e.
-    const double det = direction.x() * (-e.y()) - direction.y() * (-e.x());
+    // Solve t·direction = a + s·e by Cramer's rule, t = t_num / det and s = s_num / det; the
+    // tests are made on the numerators (det made positive), and only a farther hit divides: this
+    // runs for every edge of every object on every hypothesis.
+    double det = direction.y() * e.x() - direction.x() * e.y();
     if (std::abs(det) < 1e-12) continue;
-    const double t = (a.x() * (-e.y()) - a.y() * (-e.x())) / det;
-    const double s = (direction.x() * a.y() - direction.y() * a.x()) / det;
-    if (t > 0.0 && s >= -1e-9 && s <= 1.0 + 1e-9) best = std::max(best, t);
+    double t_num = a.y() * e.x() - a.x() * e.y();
+    double s_num = direction.x() * a.y() - direction.y() * a.x();
+    if (det < 0.0) {
+      det = -det;
+      t_num = -t_num;
+      s_num = -s_num;
+    }
+    if (t_num > best * det && s_num >= -1e-9 * det && s_num <= (1.0 + 1e-9) * det) {
+      best = t_num / det;
+    }
   }
   return best;
 }
@@ -240,29 +255,24 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
       if (settled) break;
     }
     if (lost) continue;
-    // The heading each bearing gives at a position; the mirror solution disagrees.
-    const double bearing_i = std::atan2(pi.y(), pi.x());
-    const double bearing_j = std::atan2(pj.y(), pj.x());
-    const auto heading_from = [](const Eigen::Vector2d& at, const Eigen::Vector2d& centre,
-                                 double bearing) {
-      return std::atan2(centre.y() - at.y(), centre.x() - at.x()) - bearing;
-    };
+    // The heading each bearing gives at a position; the mirror solution disagrees:
+    // |h_i − h_j| ≤ heading_agreement is cos(h_i − h_j) ≥ cos(heading_agreement).
     const auto headings_agree = [&](const Eigen::Vector2d& at) {
-      return std::abs(NormalizeAngle(heading_from(at, oa.center, bearing_i) -
-                                     heading_from(at, ob.center, bearing_j))) <=
-             options_.heading_agreement;
+      return options_.heading_agreement >= kPi ||
+             HeadingFrom(at, oa.center, pi).dot(HeadingFrom(at, ob.center, pj)) >=
+                 std::cos(options_.heading_agreement);
     };
     PoseCandidate candidate;
-    candidate.pose = Pose2(
-        x.x(), x.y(),
-        CircularMean(heading_from(x, oa.center, bearing_i), heading_from(x, ob.center, bearing_j)));
+    // The circular mean of the two headings: the angle of the sum of their unit vectors.
+    const Eigen::Vector2d mean = HeadingFrom(x, oa.center, pi) + HeadingFrom(x, ob.center, pj);
+    candidate.pose = Pose2(x.x(), x.y(), std::atan2(mean.y(), mean.x()));
     if (options_.refine) {
       // Ranges and bearings together; the bearings must then agree at the refined pose.
       candidate.matches = {{i, oa.id}, {j, ob.id}};
       Refine(observed, &candidate);
       candidate.matches.clear();
     }
-    // Free space first: one cell read, where the bearings take four arc tangents.
+    // Free space first: one cell read.
     if (!InFreeSpace(candidate.pose.translation())) continue;
     if (!headings_agree(candidate.pose.translation())) continue;
     const double sigma =
