@@ -58,11 +58,8 @@ TEST_F(ScanMatchRelocalizerTest, PriorWindowThenCeresFindsThePose) {
   right.pose = Pose2(truth.x + 0.3, truth.y - 0.25, truth.theta + 0.15);
   right.covariance = Eigen::Vector3d(0.04, 0.04, 0.01).asDiagonal();
   const RelocalizationResult result = relocalizer_.Relocalize(Scan(truth), Pose2(), {wrong, right});
-  ASSERT_TRUE(result.success);
+  ExpectFound(result, truth);
   EXPECT_EQ(result.hypothesis, 1);
-  EXPECT_NEAR(result.pose.x, truth.x, 0.02);
-  EXPECT_NEAR(result.pose.y, truth.y, 0.02);
-  EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.01);
   EXPECT_GT(mapping::MatchScore(relocalizer_.grid(), relocalizer_.MatchPoints(Scan(truth), Pose2()),
                                 result.pose),
             0.8);
@@ -131,10 +128,7 @@ TEST_F(ScanMatchRelocalizerTest, AClosePriorIsSettledByTheNarrowWindowWithLessWo
 TEST_F(ScanMatchRelocalizerTest, GlobalSearchWithoutPrior) {
   const Pose2 truth(1.9, -2.6, -0.7);
   const RelocalizationResult result = relocalizer_.RelocalizeGlobal(Scan(truth), Pose2());
-  ASSERT_TRUE(result.success);
-  EXPECT_NEAR(result.pose.x, truth.x, 0.02);
-  EXPECT_NEAR(result.pose.y, truth.y, 0.02);
-  EXPECT_NEAR(AngleDifference(result.pose.theta, truth.theta), 0.0, 0.01);
+  ExpectFound(result, truth);
   EXPECT_EQ(result.hypothesis, -1);
 }
 
@@ -143,10 +137,7 @@ TEST_F(ScanMatchRelocalizerTest, LaserOffsetIsApplied) {
   const Pose2 offset(0.2, 0.05, 0.1);
   const RelocalizationResult result = relocalizer_.RelocalizeInWindow(
       Scan(robot * offset), offset, {Pose2(0.7, 1.8, -0.9), 0.5, 0.3});
-  ASSERT_TRUE(result.success);
-  EXPECT_NEAR(result.pose.x, robot.x, 0.02);
-  EXPECT_NEAR(result.pose.y, robot.y, 0.02);
-  EXPECT_NEAR(AngleDifference(result.pose.theta, robot.theta), 0.0, 0.01);
+  ExpectFound(result, robot);
 }
 
 }  // namespace

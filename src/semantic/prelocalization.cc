@@ -233,6 +233,9 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
   const int count = IntersectCircles(
       oa.center, centre_in_robot(si, mean_behind_[static_cast<std::size_t>(a)]).norm(), ob.center,
       centre_in_robot(sj, mean_behind_[static_cast<std::size_t>(b)]).norm(), slack, points);
+  // |h_i − h_j| ≤ heading_agreement is cos(h_i − h_j) ≥ cos(heading_agreement).
+  const double min_heading_cosine =
+      options_.heading_agreement >= kPi ? -2.0 : std::cos(options_.heading_agreement);
   for (int k = 0; k < count; ++k) {
     // Refine with the depth behind the surface seen from this position (a fixed point: the
     // depth depends on the direction, the direction on the position).
@@ -255,12 +258,10 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
       if (settled) break;
     }
     if (lost) continue;
-    // The heading each bearing gives at a position; the mirror solution disagrees:
-    // |h_i − h_j| ≤ heading_agreement is cos(h_i − h_j) ≥ cos(heading_agreement).
+    // The heading each bearing gives at a position; the mirror solution disagrees.
     const auto headings_agree = [&](const Eigen::Vector2d& at) {
-      return options_.heading_agreement >= kPi ||
-             HeadingFrom(at, oa.center, pi).dot(HeadingFrom(at, ob.center, pj)) >=
-                 std::cos(options_.heading_agreement);
+      return HeadingFrom(at, oa.center, pi).dot(HeadingFrom(at, ob.center, pj)) >=
+             min_heading_cosine;
     };
     PoseCandidate candidate;
     // The circular mean of the two headings: the angle of the sum of their unit vectors.
