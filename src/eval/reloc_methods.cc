@@ -229,6 +229,10 @@ class MethodRun {
     }
     // Scan-matcher methods: relocalize, then track (semantic-scanmatch re-checking the lock).
     if (!tracking_) {
+      NoteTurn(scan);
+      // Before a full turn, a scan without a frame gives the semantic method nothing to search;
+      // it is not timed (the thread CPU clock is a system call, ~0.5 µs, all it would measure).
+      if (method_ == "semantic-scanmatch" && !frame && !FullTurn()) return 0;
       const double search_start = ThreadCpuSeconds();
       std::optional<localization::RelocalizationResult> result = Relocalize(scan, frame, trace);
       search_cpu_ += ThreadCpuSeconds() - search_start;
@@ -265,6 +269,7 @@ class MethodRun {
     // Only poses explaining more than the tracked one are of interest: the others are dropped
     // before the laser rates them.
     const int explained = map_.prelocalizer.Agreeing(observed, *estimate_);
+    if (explained >= static_cast<int>(observed.size())) return false;  // none can explain more
     const std::vector<semantic::PoseCandidate> candidates =
         PreLocalize(scan, observed, trace, explained + 1);
     std::vector<semantic::PoseCandidate> better;
@@ -281,16 +286,21 @@ class MethodRun {
     return true;
   }
 
-  // One relocalization attempt of a scan-matcher method; nothing when it waits for a prior.
-  std::optional<localization::RelocalizationResult> Relocalize(const StampedScan& scan,
-                                                               const RelocFrame* frame,
-                                                               RelocTrace* trace) {
+  // Adds the turn since the last scan to what the robot turned while lost.
+  void NoteTurn(const StampedScan& scan) {
     if (start_odometry_) {
       turned_ += std::abs(NormalizeAngle(scan.odometry.theta - last_heading_));
     } else {
       start_odometry_ = scan.odometry;
     }
     last_heading_ = scan.odometry.theta;
+  }
+  bool FullTurn() const { return turned_ >= 2.0 * M_PI; }
+
+  // One relocalization attempt of a scan-matcher method; nothing when it waits for a prior.
+  std::optional<localization::RelocalizationResult> Relocalize(const StampedScan& scan,
+                                                               const RelocFrame* frame,
+                                                               RelocTrace* trace) {
     if (method_ == "scanmatch-global") {
       return map_.matcher.RelocalizeGlobal(ScanPoints(scan));
     }
@@ -300,7 +310,7 @@ class MethodRun {
       observed = Observe(scan, *frame);
       candidates = PreLocalize(scan, observed, trace);
     }
-    const bool full_turn = turned_ >= 2.0 * M_PI;
+    const bool full_turn = FullTurn();
     if (candidates.empty() && full_turn && map_.method.single_object && !single_object_tried_) {
       // Once: the circles give many windows, and a turn's objects are all remembered (also when
       // this scan has no frame or its frame shows nothing).

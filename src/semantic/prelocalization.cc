@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -145,10 +146,17 @@ double CenterBehindSurface(const SemanticObject& object, const Eigen::Vector2d& 
 PreLocalizer::PreLocalizer(const SemanticMap& map, const mapping::MapImage& occupancy,
                            const PreLocalizationOptions& options)
     : objects_(map.objects), occupancy_(occupancy), options_(options) {
+  for (const SemanticObject& object : objects_) class_id_.emplace(object.class_name, 0);
+  int next_id = 0;
+  for (auto& [name, id] : class_id_) id = next_id++;  // name order
+  const std::size_t classes = class_id_.size();
+  objects_of_class_.resize(classes);
+  pairs_.resize(classes * classes);
+  std::vector<int> class_of;
   for (std::size_t o = 0; o < objects_.size(); ++o) {
     const SemanticObject& object = objects_[o];
-    index_of_id_[object.id] = static_cast<int>(o);
-    objects_of_class_[object.class_name].push_back(static_cast<int>(o));
+    class_of.push_back(class_id_.at(object.class_name));
+    objects_of_class_[static_cast<std::size_t>(class_of.back())].push_back(static_cast<int>(o));
     double radius = 0.0;
     for (const Eigen::Vector2d& corner : object.footprint) {
       radius = std::max(radius, (corner - object.center).norm());
@@ -159,16 +167,17 @@ PreLocalizer::PreLocalizer(const SemanticMap& map, const mapping::MapImage& occu
   for (std::size_t a = 0; a < objects_.size(); ++a) {
     for (std::size_t b = 0; b < objects_.size(); ++b) {
       if (a == b) continue;
-      const std::string& ca = objects_[a].class_name;
-      const std::string& cb = objects_[b].class_name;
-      // Each unordered pair once, under its classes in name order (a first when equal).
+      const int ca = class_of[a];
+      const int cb = class_of[b];
+      // Each unordered pair once, under its classes in id order (a first when equal).
       if (ca > cb || (ca == cb && a > b)) continue;
       const double distance = (objects_[a].center - objects_[b].center).norm();
       if (distance > kMaxPairDistance) continue;
-      pairs_[{ca, cb}].push_back({distance, static_cast<int>(a), static_cast<int>(b)});
+      pairs_[static_cast<std::size_t>(ca) * classes + static_cast<std::size_t>(cb)].push_back(
+          {distance, static_cast<int>(a), static_cast<int>(b)});
     }
   }
-  for (auto& [classes, list] : pairs_) {
+  for (std::vector<IndexedPair>& list : pairs_) {
     std::sort(list.begin(), list.end(),
               [](const IndexedPair& x, const IndexedPair& y) { return x.distance < y.distance; });
   }
@@ -179,30 +188,50 @@ PreLocalizer::PreLocalizer(const SemanticMap& map, const mapping::MapImage& occu
   }
 }
 
-std::vector<std::tuple<int, int, double>> PreLocalizer::RetrievePairs(const std::string& class_a,
-                                                                      const std::string& class_b,
-                                                                      double d) const {
-  std::vector<std::tuple<int, int, double>> found;
+std::vector<int> PreLocalizer::ClassesOf(const std::vector<ObservedObject>& observed) const {
+  std::vector<int> classes;
+  classes.reserve(observed.size());
+  for (const ObservedObject& s : observed) {
+    const auto it = class_id_.find(s.class_name);
+    classes.push_back(it == class_id_.end() ? -1 : it->second);
+  }
+  return classes;
+}
+
+template <typename Visit>
+void PreLocalizer::ForEachPair(int class_a, int class_b, double d, Visit&& visit) const {
+  if (class_a < 0 || class_b < 0) return;
   const bool swapped = class_a > class_b;
-  const auto it = pairs_.find(swapped ? std::pair{class_b, class_a} : std::pair{class_a, class_b});
-  if (it == pairs_.end()) return found;
+  const std::vector<IndexedPair>& list =
+      pairs_[static_cast<std::size_t>(std::min(class_a, class_b)) * class_id_.size() +
+             static_cast<std::size_t>(std::max(class_a, class_b))];
   const double low = d / (1.0 + options_.distance_tolerance);
   const double high = d / (1.0 - options_.distance_tolerance);
-  const std::vector<IndexedPair>& list = it->second;
   auto first =
       std::upper_bound(list.begin(), list.end(), low,
                        [](double value, const IndexedPair& p) { return value < p.distance; });
   for (; first != list.end() && first->distance < high; ++first) {
-    const int a = objects_[first->a].id;
-    const int b = objects_[first->b].id;
     if (swapped) {
-      found.emplace_back(b, a, first->distance);
+      visit(first->b, first->a, first->distance);
     } else {
-      found.emplace_back(a, b, first->distance);
+      visit(first->a, first->b, first->distance);
     }
     // Same classes: either object may be the first one seen.
-    if (class_a == class_b) found.emplace_back(b, a, first->distance);
+    if (class_a == class_b) visit(first->b, first->a, first->distance);
   }
+}
+
+std::vector<std::tuple<int, int, double>> PreLocalizer::RetrievePairs(const std::string& class_a,
+                                                                      const std::string& class_b,
+                                                                      double d) const {
+  std::vector<std::tuple<int, int, double>> found;
+  const auto a = class_id_.find(class_a);
+  const auto b = class_id_.find(class_b);
+  if (a == class_id_.end() || b == class_id_.end()) return found;
+  ForEachPair(a->second, b->second, d, [&](int oa, int ob, double distance) {
+    found.emplace_back(objects_[static_cast<std::size_t>(oa)].id,
+                       objects_[static_cast<std::size_t>(ob)].id, distance);
+  });
   return found;
 }
 
@@ -210,9 +239,10 @@ bool PreLocalizer::InFreeSpace(const Eigen::Vector2d& point) const {
   if (clearance_.empty()) return false;
   const GridGeometry geometry = GeometryOf(occupancy_);
   const Eigen::Vector2i cell = geometry.CellOf(point);
-  return geometry.Contains(cell) &&
-         mapping::ClassifyMapCell(occupancy_, cell.x(), cell.y()) == mapping::CellState::kFree &&
-         clearance_.at<float>(cell.y(), cell.x()) >= options_.clearance;
+  if (!geometry.Contains(cell)) return false;
+  // The distance to the nearest non-free cell is 0 exactly on the cells that are not free.
+  const float clearance = clearance_.at<float>(cell.y(), cell.x());
+  return clearance > 0.0f && clearance >= options_.clearance;
 }
 
 void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j,
@@ -269,9 +299,8 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
     candidate.pose = Pose2(x.x(), x.y(), std::atan2(mean.y(), mean.x()));
     if (options_.refine) {
       // Ranges and bearings together; the bearings must then agree at the refined pose.
-      candidate.matches = {{i, oa.id}, {j, ob.id}};
-      Refine(observed, &candidate);
-      candidate.matches.clear();
+      const std::array<Match, 2> pair = {Match{i, a}, Match{j, b}};
+      Refine(observed, pair, &candidate.pose);
     }
     // Free space first: one cell read.
     if (!InFreeSpace(candidate.pose.translation())) continue;
@@ -285,20 +314,19 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
   }
 }
 
-int PreLocalizer::CountAgreeing(const std::vector<ObservedObject>& observed,
-                                PoseCandidate* candidate) const {
-  std::vector<int> used;
-  candidate->matches.clear();
-  const Eigen::Isometry2d world_from_robot = candidate->pose.ToIsometry();
+void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
+                                 const std::vector<int>& classes, const Pose2& pose,
+                                 std::vector<Match>* matched) const {
+  matched->clear();
+  const Eigen::Isometry2d world_from_robot = pose.ToIsometry();
   for (std::size_t k = 0; k < observed.size(); ++k) {
+    if (classes[k] < 0) continue;
     const ObservedObject& s = observed[k];
-    const auto of_class = objects_of_class_.find(s.class_name);
-    if (of_class == objects_of_class_.end()) continue;
     const Eigen::Vector2d surface = world_from_robot * s.surface;
-    const Eigen::Vector2d ray = Unit(surface - candidate->pose.translation());
+    const Eigen::Vector2d ray = Unit(surface - pose.translation());
     int best = -1;
     double best_error = options_.agreement_radius + options_.agreement_per_metre * s.range;
-    for (const int o : of_class->second) {
+    for (const int o : objects_of_class_[static_cast<std::size_t>(classes[k])]) {
       const SemanticObject& object = objects_[static_cast<std::size_t>(o)];
       // The centre lies at most the outline's radius behind the surface: an object farther than
       // that plus the best error cannot do better (most of a large map).
@@ -306,7 +334,10 @@ int PreLocalizer::CountAgreeing(const std::vector<ObservedObject>& observed,
           best_error) {
         continue;
       }
-      if (std::find(used.begin(), used.end(), o) != used.end()) continue;
+      if (std::any_of(matched->begin(), matched->end(),
+                      [o](const Match& m) { return m.second == o; })) {
+        continue;
+      }
       const Eigen::Vector2d centre = surface + CenterBehindSurface(object, -ray) * ray;
       const double error = (centre - object.center).norm();
       if (error < best_error) {
@@ -314,43 +345,38 @@ int PreLocalizer::CountAgreeing(const std::vector<ObservedObject>& observed,
         best = o;
       }
     }
-    if (best < 0) continue;
-    used.push_back(best);
-    candidate->matches.emplace_back(static_cast<int>(k),
-                                    objects_[static_cast<std::size_t>(best)].id);
+    if (best >= 0) matched->emplace_back(static_cast<int>(k), best);
   }
-  return static_cast<int>(candidate->matches.size());
 }
 
 int PreLocalizer::Agreeing(const std::vector<ObservedObject>& observed, const Pose2& pose) const {
-  PoseCandidate candidate;
-  candidate.pose = pose;
-  return CountAgreeing(observed, &candidate);
+  std::vector<Match> matched;
+  MatchAgreeing(observed, ClassesOf(observed), pose, &matched);
+  return static_cast<int>(matched.size());
 }
 
 std::vector<PoseCandidate> PreLocalizer::Localize(
     const std::vector<ObservedObject>& observed,
     const std::function<double(const Pose2&)>& laser_score, const std::vector<int>* only,
     int min_agreeing) const {
-  const auto allowed = [only](int id) {
+  // No pose explains more objects than are seen.
+  if (min_agreeing > static_cast<int>(observed.size())) return {};
+  const auto allowed = [&](int o) {
+    const int id = objects_[static_cast<std::size_t>(o)].id;
     return only == nullptr || std::find(only->begin(), only->end(), id) != only->end();
   };
+  const std::vector<int> classes = ClassesOf(observed);
   std::vector<PoseCandidate> candidates;
   for (std::size_t i = 0; i < observed.size(); ++i) {
     for (std::size_t j = i + 1; j < observed.size(); ++j) {
-      const Eigen::Vector2d pi = observed[i].surface;
-      const Eigen::Vector2d pj = observed[j].surface;
-      const double d = (pi - pj).norm();
-      for (const auto& [a, b, distance] :
-           RetrievePairs(observed[i].class_name, observed[j].class_name, d)) {
-        (void)distance;
-        if (!allowed(a) || !allowed(b)) continue;
-        AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), index_of_id_.at(a),
-                          index_of_id_.at(b), &candidates);
-      }
+      const double d = (observed[i].surface - observed[j].surface).norm();
+      ForEachPair(classes[i], classes[j], d, [&](int a, int b, double) {
+        if (!allowed(a) || !allowed(b)) return;
+        AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), a, b, &candidates);
+      });
     }
   }
-  Rate(observed, laser_score, options_.min_laser_score, min_agreeing, &candidates);
+  Rate(observed, classes, laser_score, options_.min_laser_score, min_agreeing, &candidates);
   return BestDistinct(std::move(candidates));
 }
 
@@ -368,9 +394,9 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
   }
   for (const ObservedObject* s : nearest) {
     const Eigen::Vector2d ray = Unit(s->surface);
-    const auto of_class = objects_of_class_.find(s->class_name);
-    if (of_class == objects_of_class_.end()) continue;
-    for (const int o : of_class->second) {
+    const auto class_id = class_id_.find(s->class_name);
+    if (class_id == class_id_.end()) continue;
+    for (const int o : objects_of_class_[static_cast<std::size_t>(class_id->second)]) {
       const SemanticObject& object = objects_[static_cast<std::size_t>(o)];
       const double radius = (s->surface + mean_behind_[static_cast<std::size_t>(o)] * ray).norm();
       const int samples = std::max(
@@ -399,58 +425,65 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
   std::erase_if(candidates, [&](const PoseCandidate& c) {
     return laser_score(c.pose) < options_.single_object_min_laser_score;
   });
-  Rate(observed, laser_score, options_.single_object_min_laser_score, 0, &candidates);
+  Rate(observed, ClassesOf(observed), laser_score, options_.single_object_min_laser_score, 0,
+       &candidates);
   return BestDistinct(std::move(candidates));
 }
 
 void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
-                          PoseCandidate* candidate) const {
-  if (candidate->matches.size() < 2) return;
+                          std::span<const Match> matched, Pose2* pose) const {
+  if (matched.size() < 2) return;
   // The rigid transform that best aligns the centres the camera implies (robot frame) with the
-  // mapped centres (world), in closed form (least squares, as Umeyama without scaling).
-  std::vector<Eigen::Vector2d> seen;
-  std::vector<Eigen::Vector2d> mapped;
-  for (const auto& [k, id] : candidate->matches) {
-    const ObservedObject& s = observed[static_cast<std::size_t>(k)];
-    const SemanticObject& object = objects_[static_cast<std::size_t>(index_of_id_.at(id))];
-    const Eigen::Vector2d world_ray = Unit(object.center - candidate->pose.translation());
-    seen.push_back(s.surface + CenterBehindSurface(object, -world_ray) * Unit(s.surface));
-    mapped.push_back(object.center);
-  }
-  Eigen::Vector2d seen_mean = Eigen::Vector2d::Zero();
-  Eigen::Vector2d mapped_mean = Eigen::Vector2d::Zero();
-  for (std::size_t m = 0; m < seen.size(); ++m) {
-    seen_mean += seen[m] / static_cast<double>(seen.size());
-    mapped_mean += mapped[m] / static_cast<double>(seen.size());
-  }
-  // In 2D the best rotation is the angle of Σ (cross, dot) of the centred pairs.
+  // mapped centres (world), in closed form (least squares, as Umeyama without scaling). In 2D the
+  // best rotation is the angle of Σ (cross, dot) of the centred pairs; Σ over centred pairs is
+  // Σ over the pairs less n times the product of the means.
+  Eigen::Vector2d seen_sum = Eigen::Vector2d::Zero();
+  Eigen::Vector2d mapped_sum = Eigen::Vector2d::Zero();
   double cross = 0.0;
   double dot = 0.0;
-  for (std::size_t m = 0; m < seen.size(); ++m) {
-    const Eigen::Vector2d a = seen[m] - seen_mean;
-    const Eigen::Vector2d b = mapped[m] - mapped_mean;
-    cross += a.x() * b.y() - a.y() * b.x();
-    dot += a.dot(b);
+  for (const auto& [k, o] : matched) {
+    const ObservedObject& s = observed[static_cast<std::size_t>(k)];
+    const SemanticObject& object = objects_[static_cast<std::size_t>(o)];
+    const Eigen::Vector2d world_ray = Unit(object.center - pose->translation());
+    const Eigen::Vector2d seen =
+        s.surface + CenterBehindSurface(object, -world_ray) * Unit(s.surface);
+    seen_sum += seen;
+    mapped_sum += object.center;
+    cross += seen.x() * object.center.y() - seen.y() * object.center.x();
+    dot += seen.dot(object.center);
   }
+  const double n = static_cast<double>(matched.size());
+  const Eigen::Vector2d seen_mean = seen_sum / n;
+  const Eigen::Vector2d mapped_mean = mapped_sum / n;
+  cross -= n * (seen_mean.x() * mapped_mean.y() - seen_mean.y() * mapped_mean.x());
+  dot -= n * seen_mean.dot(mapped_mean);
   const double theta = std::atan2(cross, dot);
   const Eigen::Vector2d t = mapped_mean - Eigen::Rotation2Dd(theta) * seen_mean;
   const Pose2 refined(t.x(), t.y(), theta);
   // An alignment that lands outside free space or far away is not trusted.
   if (InFreeSpace(refined.translation()) &&
-      (refined.translation() - candidate->pose.translation()).norm() < 1.0) {
-    candidate->pose = refined;
+      (refined.translation() - pose->translation()).norm() < 1.0) {
+    *pose = refined;
   }
 }
 
 void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
+                        const std::vector<int>& classes,
                         const std::function<double(const Pose2&)>& laser_score,
                         double min_laser_score, int min_agreeing,
                         std::vector<PoseCandidate>* candidates) const {
+  std::vector<Match> matched;
   for (PoseCandidate& candidate : *candidates) {
-    candidate.agreeing = CountAgreeing(observed, &candidate);
+    MatchAgreeing(observed, classes, candidate.pose, &matched);
     if (options_.refine) {
-      Refine(observed, &candidate);
-      candidate.agreeing = CountAgreeing(observed, &candidate);
+      Refine(observed, matched, &candidate.pose);
+      MatchAgreeing(observed, classes, candidate.pose, &matched);
+    }
+    candidate.agreeing = static_cast<int>(matched.size());
+    candidate.matches.clear();
+    if (candidate.agreeing < min_agreeing) continue;  // dropped below
+    for (const auto& [k, o] : matched) {
+      candidate.matches.emplace_back(k, objects_[static_cast<std::size_t>(o)].id);
     }
   }
   std::erase_if(*candidates,

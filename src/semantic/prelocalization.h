@@ -5,6 +5,7 @@
 #include <map>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -144,32 +145,46 @@ class PreLocalizer {
     int a;  // indices into objects_
     int b;
   };
+  // An observed object matched to a mapped one: (observed index, index into objects_).
+  using Match = std::pair<int, int>;
+
+  // The class ids of observed objects (-1: a class the map does not have). Classes are numbered
+  // in name order, so that a pair's classes in id order are in name order.
+  std::vector<int> ClassesOf(const std::vector<ObservedObject>& observed) const;
+  // Calls visit(a, b) for every mapped pair (a of class_a, b of class_b; indices into objects_)
+  // whose distance satisfies the retrieval tolerance for the observed distance d.
+  template <typename Visit>
+  void ForEachPair(int class_a, int class_b, double d, Visit&& visit) const;
   // Hypotheses from observed objects i and j seen as mapped objects a and b.
   void AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j, int a, int b,
                          std::vector<PoseCandidate>* out) const;
   bool InFreeSpace(const Eigen::Vector2d& point) const;
   // Merges coinciding candidates (the best first) and keeps max_hypotheses.
   std::vector<PoseCandidate> BestDistinct(std::vector<PoseCandidate> candidates) const;
-  int CountAgreeing(const std::vector<ObservedObject>& observed, PoseCandidate* candidate) const;
-  // Least-squares pose over the candidate's matches (see PreLocalizationOptions::refine).
-  void Refine(const std::vector<ObservedObject>& observed, PoseCandidate* candidate) const;
+  // The observed objects a robot at 'pose' explains, each matched to one mapped object.
+  void MatchAgreeing(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
+                     const Pose2& pose, std::vector<Match>* matched) const;
+  // Least-squares pose over the matches (see PreLocalizationOptions::refine).
+  void Refine(const std::vector<ObservedObject>& observed, std::span<const Match> matched,
+              Pose2* pose) const;
   // Agreement and refinement of every candidate; drops those agreeing with fewer than
   // 'min_agreeing' objects, then rates the rest by the laser and drops what it rules out.
-  void Rate(const std::vector<ObservedObject>& observed,
+  void Rate(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
             const std::function<double(const Pose2&)>& laser_score, double min_laser_score,
             int min_agreeing, std::vector<PoseCandidate>* candidates) const;
 
   std::vector<SemanticObject> objects_;
-  std::map<int, int> index_of_id_;                            // object id → index into objects_
-  std::map<std::string, std::vector<int>> objects_of_class_;  // indices into objects_
+  std::map<std::string, int> class_id_;
+  std::vector<std::vector<int>> objects_of_class_;  // by class id: indices into objects_
   // Per object: the largest distance from its centre to its outline (a bound on the centre's
   // depth behind any surface seen) and the mean over directions (the depth behind a surface
   // seen from an unknown side).
   std::vector<double> outline_radius_;
   std::vector<double> mean_behind_;
-  std::map<std::pair<std::string, std::string>, std::vector<IndexedPair>> pairs_;
+  // Mapped pairs by classes (a, b), a <= b, at a * classes + b; sorted by distance.
+  std::vector<std::vector<IndexedPair>> pairs_;
   mapping::MapImage occupancy_;
-  cv::Mat clearance_;  // CV_32F metres to the nearest non-free cell, row = cell y
+  cv::Mat clearance_;  // CV_32F metres to the nearest non-free cell (0 on it), row = cell y
   PreLocalizationOptions options_;
 };
 
