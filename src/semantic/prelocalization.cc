@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <opencv2/imgproc.hpp>
 
 #include "core/angles.h"
@@ -385,33 +386,35 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
     const std::function<double(const Pose2&)>& laser_score) const {
   std::vector<PoseCandidate> candidates;
   if (!laser_score) return candidates;
-  std::vector<const ObservedObject*> nearest;
-  for (const ObservedObject& s : observed) nearest.push_back(&s);
-  std::sort(nearest.begin(), nearest.end(),
-            [](const ObservedObject* x, const ObservedObject* y) { return x->range < y->range; });
+  const std::vector<int> classes = ClassesOf(observed);
+  std::vector<std::size_t> nearest(observed.size());
+  std::iota(nearest.begin(), nearest.end(), std::size_t{0});
+  std::sort(nearest.begin(), nearest.end(), [&observed](std::size_t x, std::size_t y) {
+    return observed[x].range < observed[y].range;
+  });
   if (static_cast<int>(nearest.size()) > options_.max_single_objects) {
     nearest.resize(static_cast<std::size_t>(options_.max_single_objects));
   }
-  for (const ObservedObject* s : nearest) {
-    const Eigen::Vector2d ray = Unit(s->surface);
-    const auto class_id = class_id_.find(s->class_name);
-    if (class_id == class_id_.end()) continue;
-    for (const int o : objects_of_class_[static_cast<std::size_t>(class_id->second)]) {
+  for (const std::size_t i : nearest) {
+    if (classes[i] < 0) continue;
+    const ObservedObject& s = observed[i];
+    const Eigen::Vector2d ray = Unit(s.surface);
+    for (const int o : objects_of_class_[static_cast<std::size_t>(classes[i])]) {
       const SemanticObject& object = objects_[static_cast<std::size_t>(o)];
-      const double radius = (s->surface + mean_behind_[static_cast<std::size_t>(o)] * ray).norm();
+      const double radius = (s.surface + mean_behind_[static_cast<std::size_t>(o)] * ray).norm();
       const int samples = std::max(
           8, static_cast<int>(std::ceil(2.0 * M_PI * radius / options_.single_object_step)));
       for (int k = 0; k < samples; ++k) {
         const double phi = 2.0 * M_PI * k / samples;
         const Eigen::Vector2d outward(std::cos(phi), std::sin(phi));
         // The centre lies behind the surface seen from this side by the depth in this direction.
-        const double range = (s->surface + CenterBehindSurface(object, outward) * ray).norm();
+        const double range = (s.surface + CenterBehindSurface(object, outward) * ray).norm();
         const Eigen::Vector2d x = object.center + range * outward;
         if (!InFreeSpace(x)) continue;
         PoseCandidate candidate;
-        candidate.pose = Pose2(x.x(), x.y(), std::atan2(-outward.y(), -outward.x()) - s->bearing);
+        candidate.pose = Pose2(x.x(), x.y(), std::atan2(-outward.y(), -outward.x()) - s.bearing);
         const double sigma = options_.position_std_base +
-                             options_.position_std_per_metre * s->range +
+                             options_.position_std_per_metre * s.range +
                              0.5 * options_.single_object_step;
         candidate.covariance = Eigen::Vector3d(sigma * sigma, sigma * sigma,
                                                options_.heading_std * options_.heading_std)
@@ -425,8 +428,7 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
   std::erase_if(candidates, [&](const PoseCandidate& c) {
     return laser_score(c.pose) < options_.single_object_min_laser_score;
   });
-  Rate(observed, ClassesOf(observed), laser_score, options_.single_object_min_laser_score, 0,
-       &candidates);
+  Rate(observed, classes, laser_score, options_.single_object_min_laser_score, 0, &candidates);
   return BestDistinct(std::move(candidates));
 }
 
