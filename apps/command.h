@@ -18,6 +18,7 @@ void AddDetectCommand(CLI::App& app, int& exit_code);
 void AddBenchCommand(CLI::App& app, int& exit_code);
 void AddPlanCommand(CLI::App& app, int& exit_code);
 void AddVocabCommand(CLI::App& app, int& exit_code);
+void AddDatasetCommand(CLI::App& app, int& exit_code);
 // `bench localize` (bench_localize_command.cc), registered by AddBenchCommand.
 void AddBenchLocalize(CLI::App& bench, int& exit_code);
 // `bench reloc` (bench_reloc_command.cc), registered by AddBenchCommand.

@@ -1,6 +1,7 @@
 // semchain render INPUT --out IMAGE.png [--scale PX_PER_M] [--world W.yaml] [--max-scans N]
 // INPUT is a world file, a run directory (`semchain simulate`) or a map directory (`semchain
-// slam`); the picture is drawn top-down with a legend.
+// slam`), drawn top-down with a legend; or a data set (`semchain dataset`), drawn as a grid of
+// its frames with their label boxes.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/dataset_drawing.h"
 #include "apps/map_grey.h"
 #include "apps/semantic_drawing.h"
 #include "io/carmen.h"
@@ -34,6 +36,8 @@ struct RenderArgs {
   double scale = 50.0;
   std::string world;  // optional overlay; a run's own world.yaml when present
   int max_scans = 200;
+  std::string split = "train";  // a data set's
+  int frames = 12;
 };
 
 // What a picture shows, gathered from the input before any drawing (so the canvas fits it).
@@ -175,13 +179,18 @@ Status RunRender(const RenderArgs& args) {
   if (!fs::exists(input)) return Status::Error(args.input + ": no such file or directory");
   if (!fs::is_directory(input)) {
     SEMCHAIN_RETURN_IF_ERROR(LoadOverlayWorld(args.input, picture));
+  } else if (fs::exists(input / "data.yaml")) {
+    SEMCHAIN_RETURN_IF_ERROR(DrawDatasetGrid(input, args.split, args.frames, 4, args.out));
+    std::printf("wrote %s\n", args.out.c_str());
+    return Status::Ok();
   } else if (fs::exists(input / "log.clf") || fs::exists(input / "log.clf.gz")) {
     SEMCHAIN_RETURN_IF_ERROR(ReadRun(input, args, picture));
   } else if (fs::exists(input / "map.yaml")) {
     SEMCHAIN_RETURN_IF_ERROR(ReadMapDirectory(input, args, picture));
   } else {
     return Status::Error(args.input +
-                         ": neither a run directory (log.clf) nor a map directory (map.yaml)");
+                         ": neither a run directory (log.clf), a map directory (map.yaml) nor a "
+                         "data set (data.yaml)");
   }
   SEMCHAIN_RETURN_IF_ERROR(Draw(picture, args));
   std::printf("wrote %s\n", args.out.c_str());
@@ -194,7 +203,8 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "render",
       "Draw a world file, a run directory (trajectories, laser returns, its world) or a map "
-      "directory (map, SLAM trajectory, semantic objects and chains) top-down as a PNG");
+      "directory (map, SLAM trajectory, semantic objects and chains) top-down as a PNG, or a "
+      "grid of a detector data set's frames with their label boxes (semchain dataset)");
   auto args = std::make_shared<RenderArgs>();
   command->add_option("input", args->input, "World YAML, RUN directory or MAP directory")
       ->required();
@@ -206,6 +216,11 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
                       "World YAML drawn under a run or over a map (a run's world.yaml by default)");
   command->add_option("--max-scans", args->max_scans, "Laser scans of a run to draw (0: none)")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--split", args->split, "A data set's split to draw (train, val, test)")
+      ->capture_default_str();
+  command->add_option("--frames", args->frames, "Frames of a data set to draw (4 to a row)")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->callback([args, &exit_code] {
     const Status status = RunRender(*args);

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   semchain::app::AddBenchCommand(app, exit_code);
   semchain::app::AddPlanCommand(app, exit_code);
   semchain::app::AddVocabCommand(app, exit_code);
+  semchain::app::AddDatasetCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

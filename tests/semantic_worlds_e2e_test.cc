@@ -171,7 +171,8 @@ TEST_P(SemanticWorldsTest, ObjectsMatchTheWorld) {
 
 INSTANTIATE_TEST_SUITE_P(BundledWorlds, SemanticWorldsTest,
                          ::testing::Values("two_similar_rooms", "two_similar_rooms_changed",
-                                           "long_corridor", "lab_loop", "low_obstacles"),
+                                           "long_corridor", "lab_loop", "low_obstacles",
+                                           "furnished_flat"),
                          [](const auto& test) { return test.param; });
 
 // Driving the mapping route twice refines the objects of the first pass instead of adding

@@ -4,14 +4,16 @@
 
 namespace semchain {
 
-Eigen::Isometry3d RobotFromOpticalCamera(double x, double y, double z, double yaw, double pitch) {
+Eigen::Isometry3d RobotFromOpticalCamera(double x, double y, double z, double yaw, double pitch,
+                                         double roll) {
   // Columns: the optical axes expressed in a forward-looking robot frame.
   Eigen::Matrix3d robot_from_optical;
   robot_from_optical << 0, 0, 1,  //
       -1, 0, 0,                   //
       0, -1, 0;
   const Eigen::Matrix3d mount = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                                 Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+                                 Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                                 Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
                                     .toRotationMatrix();
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
   transform.linear() = mount * robot_from_optical;

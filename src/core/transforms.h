@@ -10,8 +10,10 @@ namespace semchain {
 
 // The camera's optical frame (z forward, x right, y down) placed on the robot (x forward,
 // y left, z up): position (x, y, z) in metres, yaw about the robot's z axis and pitch downwards
-// (positive looks at the floor), both in radians.
-Eigen::Isometry3d RobotFromOpticalCamera(double x, double y, double z, double yaw, double pitch);
+// (positive looks at the floor) and roll about the viewing direction (positive turns the
+// image clockwise as the camera sees it), all in radians.
+Eigen::Isometry3d RobotFromOpticalCamera(double x, double y, double z, double yaw, double pitch,
+                                         double roll = 0.0);
 
 // Eq. 2: [X_r Y_r Z_r 1]ᵀ = [R_cr T_cr; 0 1] [X_c Y_c Z_c 1]ᵀ.
 Eigen::Vector3d CameraToRobot(const Eigen::Isometry3d& robot_from_camera,

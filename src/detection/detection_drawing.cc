@@ -8,17 +8,18 @@
 namespace semchain::detection {
 namespace {
 
-// Well-separated colours (RGB) for class ids, repeating after eight.
+// Well-separated colours (RGB) for class ids, repeating after ten.
 cv::Scalar ClassColor(int class_id) {
-  static const cv::Scalar kPalette[] = {{230, 25, 75},  {60, 180, 75},  {0, 130, 200},
-                                        {245, 130, 48}, {145, 30, 180}, {70, 240, 240},
-                                        {240, 50, 230}, {210, 245, 60}};
+  static const cv::Scalar kPalette[] = {
+      {230, 25, 75},  {60, 180, 75},  {0, 130, 200},  {245, 130, 48}, {145, 30, 180},
+      {70, 240, 240}, {240, 50, 230}, {210, 245, 60}, {128, 0, 0},    {0, 0, 128}};
   const int count = int(sizeof(kPalette) / sizeof(kPalette[0]));
   return kPalette[((class_id % count) + count) % count];
 }
 
 std::string Label(const Detection& detection) {
   char text[96];
+  if (detection.score < 0.0) return detection.class_name;  // a truth box: no score
   if (detection.depth_m > 0.0) {
     std::snprintf(text, sizeof(text), "%s %.2f %.2fm", detection.class_name.c_str(),
                   detection.score, detection.depth_m);

@@ -42,7 +42,9 @@ KeyframeObject InView(int id, const std::string& name) {
 }
 
 TEST(OcclusionInferenceTest, ClassVectorsAndTheirDifference) {
-  const std::vector<std::string> classes = DefaultClassNames();
+  // The paper's five classes, the first five of the default order.
+  const std::vector<std::string> classes(DefaultClassNames().begin(),
+                                         DefaultClassNames().begin() + 5);
   const std::vector<int> current = CountClasses({Seen("cabinet"), Seen("chair")}, classes);
   Keyframe keyframe;
   keyframe.objects = {InView(2, "cabinet"), InView(3, "bucket"), InView(4, "chair")};
@@ -51,12 +53,14 @@ TEST(OcclusionInferenceTest, ClassVectorsAndTheirDifference) {
   EXPECT_EQ(current, (std::vector<int>{0, 1, 0, 1, 0}));
   EXPECT_EQ(similar, (std::vector<int>{0, 1, 1, 1, 0}));
   EXPECT_EQ(ClassDifference(similar, current), (std::vector<int>{0, 0, 1, 0, 0}));
-  // Other classes of the map come after the five of the paper; unknown names are not counted.
+  // Other classes of the map come after the ten of seed 000; unknown names are not counted.
   SemanticMap map;
   map.classes = {"door", "plant"};
+  EXPECT_EQ(CountVectorClasses(map).size(), 11u);
   EXPECT_EQ(CountVectorClasses(map).back(), "plant");
-  EXPECT_EQ(CountClasses(std::vector<std::string>{"plant", "sofa"}, CountVectorClasses(map)),
-            (std::vector<int>{0, 0, 0, 0, 0, 1}));
+  EXPECT_EQ(
+      CountClasses(std::vector<std::string>{"plant", "sofa", "fridge"}, CountVectorClasses(map)),
+      (std::vector<int>{0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1}));
 }
 
 TEST(OcclusionInferenceTest, FindsTheHiddenBucketAndItsNeighbours) {

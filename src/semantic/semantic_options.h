@@ -24,8 +24,9 @@ struct ClassShapePrior {
   double Extent() const { return shape == Shape::kBox ? std::max(width, depth) : 2.0 * radius; }
 };
 
-// Priors for the default classes (door, cabinet, bucket, chair, stool); others get the
-// ClassShapePrior defaults.
+// Priors for the ten classes of seed 000 (door, cabinet, bucket, chair, stool, table, sofa,
+// computer, bed, clock), typical sizes of sim/object_shapes.h; others get the ClassShapePrior
+// defaults.
 std::map<std::string, ClassShapePrior> DefaultClassPriors();
 
 struct SemanticGridOptions {

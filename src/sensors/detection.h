@@ -21,9 +21,11 @@ struct FrameDetections {
   std::vector<Detection> detections;
 };
 
-// The default class list and order (seed 000 §3.1 step 4).
+// The default class list and order: the ten classes of seed 000's data set (§2.1), whose first
+// five are the order of its class-count vectors (§3.1 step 4).
 inline const std::vector<std::string>& DefaultClassNames() {
-  static const std::vector<std::string> kNames = {"door", "cabinet", "bucket", "chair", "stool"};
+  static const std::vector<std::string> kNames = {"door",  "cabinet", "bucket",   "chair", "stool",
+                                                  "table", "sofa",    "computer", "bed",   "clock"};
   return kNames;
 }
 

@@ -125,9 +125,7 @@ std::optional<Detection> FalsePositive(const World& world, const RgbdImage& imag
 
 }  // namespace
 
-std::vector<ObjectVisibility> MeasureVisibility(const Scene& scene, const MountedCamera& camera,
-                                                const Pose2& robot_pose, const RgbdImage& image) {
-  const World& world = scene.world();
+std::vector<ObjectVisibility> MeasureVisibility(const RgbdImage& image, const World& world) {
   std::vector<ObjectVisibility> views(world.objects.size());
   for (int v = 0; v < image.object_ids.rows; ++v) {
     const auto* ids = image.object_ids.ptr<std::int32_t>(v);
@@ -144,9 +142,23 @@ std::vector<ObjectVisibility> MeasureVisibility(const Scene& scene, const Mounte
     }
   }
   for (std::size_t i = 0; i < views.size(); ++i) {
+    views[i].measured = static_cast<int>(views[i].depths_mm.size());
+    if (i < image.unoccluded_pixels.size()) views[i].silhouette = image.unoccluded_pixels[i];
+  }
+  return views;
+}
+
+std::vector<ObjectVisibility> MeasureVisibility(const Scene& scene, const MountedCamera& camera,
+                                                const Pose2& robot_pose, const RgbdImage& image) {
+  const World& world = scene.world();
+  std::vector<ObjectVisibility> views = MeasureVisibility(image, world);
+  for (std::size_t i = 0; i < views.size(); ++i) {
     ObjectVisibility& view = views[i];
-    view.measured = static_cast<int>(view.depths_mm.size());
     if (view.pixels == 0) continue;
+    // An object of parts has holes (between a table's legs) no convex outline knows of: its
+    // silhouette is the pixels the renderer found it in when ignoring everything else.
+    const bool parts = world.objects[i].shape == ObjectShape::kParts;
+    if (parts && i < image.unoccluded_pixels.size()) continue;
     view.silhouette = AreaInsideImage(ProjectPrism(world.objects[i], camera, robot_pose),
                                       camera.intrinsics.width, camera.intrinsics.height);
   }

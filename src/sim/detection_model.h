@@ -29,8 +29,13 @@ struct ObjectVisibility {
   double VisibleFraction() const { return silhouette > 0.0 ? pixels / silhouette : 0.0; }
 };
 
+// The visibility of every object of 'world' in 'image', its silhouette the unoccluded pixels
+// the renderer counted (RenderOptions::count_unoccluded; 0 when not counted).
+std::vector<ObjectVisibility> MeasureVisibility(const RgbdImage& image, const World& world);
+
 // The visibility of every object of 'scene' in 'image', rendered from 'robot_pose'; an entry
-// per World::objects index.
+// per World::objects index. A prism's silhouette is its projected outline, an object of parts'
+// the unoccluded pixels the renderer counted.
 std::vector<ObjectVisibility> MeasureVisibility(const Scene& scene, const MountedCamera& camera,
                                                 const Pose2& robot_pose, const RgbdImage& image);
 

@@ -25,7 +25,8 @@ Status FrameRecorder::MaybeCapture(const TrajectorySample& sample) {
   if (sample.time + 1e-6 < next_time_s_) return Status::Ok();
   next_time_s_ += period_s_;
   const int index = count();
-  const RenderOptions render = MakeRenderOptions(scene_.world().robot.camera, depth_noise_rng_());
+  RenderOptions render = MakeRenderOptions(scene_.world().robot.camera, depth_noise_rng_());
+  render.count_unoccluded = HasObjectParts(scene_.world());
   const RgbdImage image = RenderRgbd(scene_, camera_, sample.pose, render);
   SEMCHAIN_RETURN_IF_ERROR(WriteFrame(run_dir_ / "frames", index, image));
   FrameDetections frame;

@@ -55,6 +55,12 @@ class ColumnRays {
   // The first surface met by 'ray', the viewing ray of pixel (u, v).
   Contact FirstContact(int u, int v, const Eigen::Vector3d& ray) const;
 
+  // Calls visit(object index) for every part of a semantic object (World::objects) that the
+  // ray of pixel (u, v) meets anywhere along its way, hidden or not (an object of several parts
+  // may be visited more than once).
+  template <typename Visit>
+  void ForEachObjectMet(int u, int v, const Eigen::Vector3d& ray, Visit&& visit) const;
+
   // The depth of 'contact'. A pitched camera shares casts between pixels of nearly the same
   // bearing; the depth is still exact on flat faces because it is recomputed on the face's plane.
   double ContactDepth(const Eigen::Vector3d& ray, const Contact& contact) const;
@@ -74,5 +80,22 @@ class ColumnRays {
   std::vector<std::vector<Span>> spans_;  // per bearing sample
   std::vector<int> sample_of_pixel_;      // pitched cameras only
 };
+
+template <typename Visit>
+void ColumnRays::ForEachObjectMet(int u, int v, const Eigen::Vector3d& ray, Visit&& visit) const {
+  const double z = origin_.z();
+  const double horizontal = ray.head<2>().norm();
+  if (horizontal < 1e-12) return;
+  for (const Span& span : spans_[SampleOf(u, v)]) {
+    const SurfaceRef& ref = span.entry.surface;
+    if (ref.kind != SurfaceRef::Kind::kObject) continue;
+    const double t_in = span.s_in / horizontal, t_out = span.s_out / horizontal;
+    const double h_in = z + t_in * ray.z(), h_out = z + t_out * ray.z();
+    // Through the prism between entry and exit the ray spans [min, max] of its two heights.
+    const double low = std::min(h_in, h_out), high = std::max(h_in, h_out);
+    if (high < span.entry.bottom || low > span.entry.top) continue;
+    visit(ref.index);
+  }
+}
 
 }  // namespace semchain::sim

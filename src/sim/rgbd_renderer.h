@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "core/pose2.h"
 #include "sensors/camera.h"
@@ -11,7 +12,8 @@
 // one horizontal ray cast (Scene::CastAll) per image column lists every prism it passes, and
 // each pixel's 3D ray then meets the first one whose vertical extent (or top face) it reaches,
 // or else the floor or the ceiling. Walls and solids carry seeded procedural textures
-// (sim/texture.h); floor and ceiling are plain.
+// (sim/texture.h); the ceiling is plain, the floor plain or textured (World::shell). Faces are
+// shaded by the world's light (World::lighting) or, without one, by how squarely they are seen.
 namespace semchain::sim {
 
 struct RenderOptions {
@@ -24,6 +26,15 @@ struct RenderOptions {
   // Surfaces farther than this (horizontally) are not drawn; the depth image stops at the
   // camera's max_range anyway, the colour image looks as far as this.
   double far_clip_meters = 200.0;
+  // The camera's colour pipeline (CameraSpec): a gain, per-channel Gaussian noise (0..255
+  // scale, seeded by noise_seed) and a Gaussian blur; the defaults leave the image as shaded.
+  double exposure = 1.0;
+  double rgb_noise_std = 0.0;
+  double blur_sigma_px = 0.0;
+  // Also count, per object, the pixels that would show it if nothing else stood in the way
+  // (RgbdImage::unoccluded_pixels): how much of it a frame hides, for objects built of parts
+  // whose silhouette is no convex outline.
+  bool count_unoccluded = false;
 };
 
 struct RgbdImage {
@@ -32,6 +43,9 @@ struct RgbdImage {
   // Per pixel: the object index (World::objects) seen there, or -1 (CV_32SC1). The detection
   // model uses it for visibility; it is never written to disk.
   cv::Mat object_ids;
+  // With RenderOptions::count_unoccluded, per World::objects index: the pixels whose ray meets
+  // the object, whatever is in front of it.
+  std::vector<int> unoccluded_pixels;
 };
 
 // The camera of a robot described by 'spec': intrinsics from its horizontal field of view and

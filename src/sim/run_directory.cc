@@ -14,8 +14,6 @@ namespace semchain::sim {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr char kRunMarker[] = "run.yaml";
-
 Status EncodePng(const fs::path& path, const cv::Mat& image) {
   std::vector<unsigned char> bytes;
   // Fixed compression so that the same image always gives the same bytes.
@@ -28,17 +26,17 @@ Status EncodePng(const fs::path& path, const cv::Mat& image) {
 
 }  // namespace
 
-Result<fs::path> BeginRunDirectory(const fs::path& run_dir) {
+Result<fs::path> BeginRunDirectory(const fs::path& run_dir, const std::string& marker) {
   std::error_code error;
   const fs::file_status status = fs::status(run_dir, error);
   if (fs::exists(status)) {
     if (!fs::is_directory(status)) {
       return Status::Error(run_dir.string() + ": exists and is not a directory");
     }
-    if (!fs::is_empty(run_dir, error) && !fs::exists(run_dir / kRunMarker)) {
+    if (!fs::is_empty(run_dir, error) && !fs::exists(run_dir / marker)) {
       return Status::Error(run_dir.string() +
-                           ": directory is not empty and holds no earlier run (run.yaml); "
-                           "choose another output directory");
+                           ": directory is not empty and holds no earlier output (" + marker +
+                           "); choose another output directory");
     }
   }
   fs::path parent = run_dir.has_parent_path() ? run_dir.parent_path() : fs::path(".");

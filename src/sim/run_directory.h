@@ -11,9 +11,10 @@
 // simulator.h for the layout), and the staging that makes a run appear all at once.
 namespace semchain::sim {
 
-// Checks that 'run_dir' may be written (absent, an empty directory or an earlier run with
-// run.yaml) and creates an empty staging directory beside it, returned.
-Result<std::filesystem::path> BeginRunDirectory(const std::filesystem::path& run_dir);
+// Checks that 'run_dir' may be written (absent, an empty directory or an earlier output that
+// holds 'marker', run.yaml for a run) and creates an empty staging directory beside it, returned.
+Result<std::filesystem::path> BeginRunDirectory(const std::filesystem::path& run_dir,
+                                                const std::string& marker = "run.yaml");
 
 // Moves the finished 'staging' directory to 'run_dir', replacing an earlier run there.
 Status FinishRunDirectory(const std::filesystem::path& staging,

@@ -59,7 +59,7 @@ Scene::Scene(const World& world) : world_(world) {
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const double length = (line[i + 1] - line[i]).norm();
       if (world_.wall_thickness <= 0.0 || length <= 0.0) {
-        edges_.push_back({line[i], line[i + 1], u, 0.0, world_.wall_height, ref});
+        edges_.push_back({line[i], line[i + 1], u, 0.0, world_.wall_height, ref, Disc{}});
       } else {
         // A thick wall is the outline of a slab around the segment, lengthened by half the
         // thickness at both ends so that slabs meeting at a corner overlap (no gap).
@@ -71,7 +71,8 @@ Scene::Scene(const World& world) : world_(world) {
         const Eigen::Vector2d corners[4] = {a - half_across, b - half_across, b + half_across,
                                             a + half_across};
         for (int k = 0; k < 4; ++k) {
-          edges_.push_back({corners[k], corners[(k + 1) % 4], u, 0.0, world_.wall_height, ref});
+          edges_.push_back(
+              {corners[k], corners[(k + 1) % 4], u, 0.0, world_.wall_height, ref, Disc{}});
         }
       }
       u += length;
@@ -86,18 +87,36 @@ Scene::Scene(const World& world) : world_(world) {
 }
 
 void Scene::AddSolid(const Solid& solid, SurfaceRef ref) {
-  const double bottom = solid.base_height;
-  const double top = solid.base_height + solid.height;
-  if (solid.footprint.shape == Footprint::Shape::kCircle) {
-    circles_.push_back({solid.footprint.center, solid.footprint.radius, bottom, top, ref});
+  if (solid.shape == ObjectShape::kPrism || solid.parts.empty()) {
+    AddPrism(solid.footprint, solid.base_height, solid.base_height + solid.height, ref, Disc{});
     return;
   }
-  const std::vector<Eigen::Vector2d> corners = BoxCorners(solid.footprint);
+  for (std::size_t i = 0; i < solid.parts.size(); ++i) {
+    const Part& part = solid.parts[i];
+    ref.part = static_cast<int>(i);
+    Disc disc;
+    if (part.profile == Part::Profile::kDisc) {
+      disc.radius = 0.5 * std::min(part.footprint.width, part.top - part.bottom);
+      disc.center = part.footprint.center;
+      disc.axis = Eigen::Vector2d(std::cos(part.footprint.yaw), std::sin(part.footprint.yaw));
+      disc.height = 0.5 * (part.bottom + part.top);
+    }
+    AddPrism(part.footprint, part.bottom, part.top, ref, disc);
+  }
+}
+
+void Scene::AddPrism(const Footprint& footprint, double bottom, double top, SurfaceRef ref,
+                     const Disc& disc) {
+  if (footprint.shape == Footprint::Shape::kCircle) {
+    circles_.push_back({footprint.center, footprint.radius, bottom, top, ref});
+    return;
+  }
+  const std::vector<Eigen::Vector2d> corners = BoxCorners(footprint);
   double u = 0.0;
   for (std::size_t i = 0; i < corners.size(); ++i) {
     const Eigen::Vector2d& a = corners[i];
     const Eigen::Vector2d& b = corners[(i + 1) % corners.size()];
-    edges_.push_back({a, b, u, bottom, top, ref});
+    edges_.push_back({a, b, u, bottom, top, ref, disc});
     u += (b - a).norm();
   }
 }
@@ -113,10 +132,18 @@ void Scene::ForEachHit(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir
     const double t = Cross(w, e) / denominator;
     const double s = Cross(w, direction) / denominator;
     if (t <= 1e-9 || t > max_range || s < 0.0 || s > 1.0) continue;
+    const Eigen::Vector2d point = origin + t * direction;
+    double bottom = edge.bottom, top = edge.top;
+    if (edge.disc.radius > 0.0) {
+      const double along = (point - edge.disc.center).dot(edge.disc.axis);
+      const double half_sq = edge.disc.radius * edge.disc.radius - along * along;
+      if (half_sq <= 0.0) continue;  // beside the disc
+      bottom = edge.disc.height - std::sqrt(half_sq);
+      top = edge.disc.height + std::sqrt(half_sq);
+    }
     Eigen::Vector2d normal = Eigen::Vector2d(-e.y(), e.x()).normalized();
     if (normal.dot(direction) > 0.0) normal = -normal;
-    visit(RayHit{t, origin + t * direction, normal, edge.u0 + s * e.norm(), edge.bottom, edge.top,
-                 edge.surface});
+    visit(RayHit{t, point, normal, edge.u0 + s * e.norm(), bottom, top, edge.surface});
   }
   for (const Circle& circle : circles_) {
     // |origin + t d - c|² = r² with |d| = 1; only the entry point of the circle is visible.

@@ -16,6 +16,7 @@ struct SurfaceRef {
   enum class Kind { kWall, kObject, kObstacle };
   Kind kind = Kind::kWall;
   int index = 0;  // wall polyline, or index into World::objects / World::obstacles
+  int part = -1;  // index into the solid's parts; -1 for a wall or a solid that is one prism
   bool operator==(const SurfaceRef&) const = default;
 };
 
@@ -49,11 +50,20 @@ class Scene {
   const World& world() const { return world_; }
 
  private:
+  // A vertical disc standing on an edge's line (a clock's face): at a point 'o' metres along
+  // the line from its centre, the disc spans height ± sqrt(radius² - o²).
+  struct Disc {
+    double radius = 0.0;  // 0: the edge is an ordinary face of a prism
+    Eigen::Vector2d center = Eigen::Vector2d::Zero();
+    Eigen::Vector2d axis = Eigen::Vector2d::UnitX();  // unit, along the disc's face
+    double height = 0.0;
+  };
   struct Edge {
     Eigen::Vector2d a, b;
     double u0 = 0.0;  // texture coordinate at 'a'
     double bottom = 0.0, top = 0.0;
     SurfaceRef surface;
+    Disc disc;
   };
   struct Circle {
     Eigen::Vector2d center;
@@ -62,6 +72,8 @@ class Scene {
     SurfaceRef surface;
   };
   void AddSolid(const Solid& solid, SurfaceRef ref);
+  void AddPrism(const Footprint& footprint, double bottom, double top, SurfaceRef ref,
+                const Disc& disc);
   template <typename Visit>
   void ForEachHit(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction, double max_range,
                   Visit&& visit) const;

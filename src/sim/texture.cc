@@ -16,6 +16,8 @@ std::uint64_t Mix(std::uint64_t x) {
 
 double Clamp01(double x) { return std::clamp(x, 0.0, 1.0); }
 
+constexpr double kPiLocal = 3.14159265358979323846;
+
 // How much of a pixel 'footprint' wide, centred 'distance' inside an edge, lies inside: a box
 // filter of the step, so edges stay sharp up close and blend instead of flickering far away.
 double Coverage(double distance, double footprint) { return Clamp01(distance / footprint + 0.5); }
@@ -74,6 +76,7 @@ SurfaceTexture::SurfaceTexture(std::uint32_t seed, const std::array<std::uint8_t
       joint_ = 0.0;
       break;
     case TexturePattern::kPanels:
+    default:  // the finishes are set by the other constructor
       cell_width_ = 0.22 + 0.16 * r(1);
       cell_height_ = 0.22 + 0.16 * r(2);
       joint_ = 0.0;
@@ -85,8 +88,64 @@ SurfaceTexture::SurfaceTexture(std::uint32_t seed, const std::array<std::uint8_t
   light_ = {Channel(base[0], 1.0, 0.4), Channel(base[1], 1.0, 0.4), Channel(base[2], 1.0, 0.4)};
 }
 
+SurfaceTexture::SurfaceTexture(std::uint32_t seed, const std::array<std::uint8_t, 3>& base,
+                               TextureFamily family)
+    : SurfaceTexture(seed, base) {
+  if (family == TextureFamily::kPattern) return;
+  const auto r = [this](int k) { return HashToUnit(seed_, -2, k); };
+  joint_ = 0.0;
+  // Finishes vary less than the patterns: a narrower band around the base colour.
+  double dark = 0.55, light = 0.25;
+  switch (family) {
+    case TextureFamily::kWood:
+      pattern_ = TexturePattern::kWoodGrain;
+      cell_width_ = 0.09 + 0.12 * r(1);  // plank width
+      cell_height_ = 0.6 + 0.8 * r(2);   // plank length
+      joint_ = 0.002 + 0.002 * r(3);
+      break;
+    case TextureFamily::kFabric:
+      pattern_ = TexturePattern::kWeave;
+      cell_width_ = cell_height_ = 0.004 + 0.004 * r(1);  // thread spacing
+      dark = 0.65, light = 0.2;
+      break;
+    case TextureFamily::kMetal:
+      pattern_ = TexturePattern::kBrushed;
+      cell_width_ = cell_height_ = 0.3 + 0.4 * r(1);
+      dark = 0.7, light = 0.35;
+      break;
+    case TextureFamily::kPlastic:
+      pattern_ = TexturePattern::kSmooth;
+      cell_width_ = cell_height_ = 0.25 + 0.3 * r(1);
+      dark = 0.8, light = 0.15;
+      break;
+    case TextureFamily::kPaint:
+    case TextureFamily::kPattern:
+      pattern_ = TexturePattern::kPaint;
+      cell_width_ = cell_height_ = 0.4 + 0.5 * r(1);
+      dark = 0.8, light = 0.12;
+      break;
+  }
+  dark_ = {Channel(base[0], dark, 0.0), Channel(base[1], dark, 0.0), Channel(base[2], dark, 0.0)};
+  light_ = {Channel(base[0], 1.0, light), Channel(base[1], 1.0, light),
+            Channel(base[2], 1.0, light)};
+}
+
 double SurfaceTexture::Intensity(double u, double v, double footprint) const {
   footprint = std::max(footprint, 1e-6);
+  switch (pattern_) {
+    case TexturePattern::kWoodGrain:
+      return Clamp01(WoodGrain(u, v, footprint));
+    case TexturePattern::kWeave:
+      return Clamp01(Weave(u, v, footprint));
+    case TexturePattern::kBrushed:
+      return Clamp01(Brushed(u, v, footprint));
+    case TexturePattern::kSmooth:
+      return Clamp01(Smooth(u, v, footprint, 0.1));
+    case TexturePattern::kPaint:
+      return Clamp01(Smooth(u, v, footprint, 0.04));
+    default:
+      break;
+  }
   double value = 0.0;
   switch (pattern_) {
     case TexturePattern::kBricks:
@@ -100,6 +159,8 @@ double SurfaceTexture::Intensity(double u, double v, double footprint) const {
       break;
     case TexturePattern::kPanels:
       value = Panels(u, v, footprint);
+      break;
+    default:
       break;
   }
   // A slow brightness drift (0.9 m cells) so that repeats of a pattern still look different.
@@ -178,6 +239,53 @@ double SurfaceTexture::Panels(double u, double v, double footprint) const {
   double value = 0.5 + rect(x0, x1, y0, y1) * (outer - 0.5);
   value += rect(ix0, ix1, iy0, iy1) * (Clamp01(inner) - value);
   return FadeFineDetail(value, 0.5, 0.3 * std::min(cell_width_, cell_height_), footprint);
+}
+
+double SurfaceTexture::WoodGrain(double u, double v, double footprint) const {
+  // Planks run along v (upright parts) with staggered ends; grain lines wave along them.
+  const double column = std::floor(u / cell_width_);
+  const double offset = cell_height_ * HashToUnit(seed_, static_cast<std::int64_t>(column), 1);
+  const double row = std::floor((v + offset) / cell_height_);
+  const double plank =
+      HashToUnit(seed_, static_cast<std::int64_t>(column), static_cast<std::int64_t>(row) + 7);
+  const double du = u - column * cell_width_;
+  const double dv = v + offset - row * cell_height_;
+  const double wave =
+      0.012 * std::sin(v * 9.0 + 6.0 * plank) + 0.02 * ValueNoise(seed_ + 11, u / 0.05, v / 0.4);
+  const double grain_pitch = 0.006 + 0.006 * plank;
+  const double grain = 0.5 + 0.5 * std::sin(2.0 * kPiLocal * (du + wave) / grain_pitch);
+  const double base = 0.35 + 0.4 * plank;
+  double value = base + FadeFineDetail(0.25 * (grain - 0.5), 0.0, grain_pitch, footprint);
+  const double inside = std::min(std::min(du, cell_width_ - du), std::min(dv, cell_height_ - dv));
+  value *= 0.55 + 0.45 * Coverage(inside - 0.5 * joint_, footprint);
+  // A knot now and then: a dark spot a few centimetres across.
+  const double knot = ValueNoise(seed_ + 12, u / 0.04, v / 0.04);
+  value -= FadeFineDetail(0.3 * Clamp01((knot - 0.82) / 0.05), 0.0, 0.04, footprint);
+  return value;
+}
+
+double SurfaceTexture::Weave(double u, double v, double footprint) const {
+  const double s = cell_width_;
+  const double thread =
+      0.5 + 0.25 * (std::sin(2.0 * kPiLocal * u / s) * std::sin(2.0 * kPiLocal * v / s));
+  const double mottle = ValueNoise(seed_ + 21, u / 0.07, v / 0.07);
+  const double seams = ValueNoise(seed_ + 22, u / 0.25, v / 0.25);
+  return 0.3 + 0.35 * mottle + 0.2 * seams + FadeFineDetail(thread - 0.5, 0.0, s, footprint);
+}
+
+double SurfaceTexture::Brushed(double u, double v, double footprint) const {
+  // Streaks: noise stretched 40 times along u.
+  const double streak = ValueNoise(seed_ + 31, u / 0.4, v / 0.004);
+  const double sheen = ValueNoise(seed_ + 32, u / cell_width_, v / cell_height_);
+  return 0.35 + 0.45 * sheen + FadeFineDetail(0.2 * (streak - 0.5), 0.0, 0.004, footprint) +
+         0.5 * Speckles(u, v, footprint);
+}
+
+double SurfaceTexture::Smooth(double u, double v, double footprint, double marks) const {
+  const double mottle = ValueNoise(seed_ + 41, u / cell_width_, v / cell_height_);
+  const double scuff = ValueNoise(seed_ + 42, u / 0.03, v / 0.03);
+  const double mark = FadeFineDetail(Clamp01((scuff - 0.8) / 0.06), 0.0, 0.03, footprint);
+  return 0.45 + 0.35 * mottle - marks * 3.0 * mark;
 }
 
 std::uint32_t WallTextureSeed(std::uint32_t world_seed, int wall_index, int segment) {

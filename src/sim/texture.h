@@ -23,12 +23,21 @@ enum class TexturePattern {
   kTiles,   // a square grid of tiles of strongly varying brightness
   kBlobs,   // two-tone spots from thresholded value noise
   kPanels,  // posters: a rectangle (with an inset) in each cell of a coarse grid
+  // The finishes of TextureFamily (world.h) other than kPattern:
+  kWoodGrain,  // planks with wavy grain lines and knots
+  kWeave,      // fabric: a fine weave over a mottled dye
+  kBrushed,    // metal: fine streaks along u, a soft sheen
+  kSmooth,     // plastic: nearly uniform, faint mottling and scuffs
+  kPaint,      // painted plaster: uniform with a slow roller mottle and rare marks
 };
 
 class SurfaceTexture {
  public:
   // The pattern, its scale and its details all follow from 'seed'; 'base_color' tints it.
   SurfaceTexture(std::uint32_t seed, const std::array<std::uint8_t, 3>& base_color);
+  // A texture of 'family': kPattern is the constructor above, the others their finish.
+  SurfaceTexture(std::uint32_t seed, const std::array<std::uint8_t, 3>& base_color,
+                 TextureFamily family);
 
   // The colour at surface coordinates (u, v) in metres. 'footprint' is the size in metres of
   // one pixel there: detail finer than about two pixels fades to its mean instead of aliasing.
@@ -44,6 +53,10 @@ class SurfaceTexture {
   double Blobs(double u, double v, double footprint) const;
   double Panels(double u, double v, double footprint) const;
   double Speckles(double u, double v, double footprint) const;
+  double WoodGrain(double u, double v, double footprint) const;
+  double Weave(double u, double v, double footprint) const;
+  double Brushed(double u, double v, double footprint) const;
+  double Smooth(double u, double v, double footprint, double marks) const;
 
   std::uint64_t seed_;
   TexturePattern pattern_;

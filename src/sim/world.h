@@ -25,6 +25,29 @@ struct Footprint {
   double radius = 0.0;  // circle
 };
 
+// The surface finish of a solid or part, which picks its procedural texture (texture.h).
+// kPattern is the bold patterns every surface had before the object classes got their looks
+// (bricks, tiles, blobs, posters): the bundled worlds' figures were measured with it.
+enum class TextureFamily { kPattern, kWood, kFabric, kMetal, kPlastic, kPaint };
+
+// How a semantic object is built: one prism over its whole footprint, or the parts of its
+// class's characteristic shape (object_shapes.h: a table is a top on four legs).
+enum class ObjectShape { kPrism, kParts };
+
+// One convex piece of an object (a table's top, one of its legs), in world coordinates: a
+// prism between two heights, or a vertical disc (a clock's face) standing in a thin box
+// footprint whose width is the disc's diameter, centred between 'bottom' and 'top'.
+struct Part {
+  enum class Profile { kPrism, kDisc };
+  Profile profile = Profile::kPrism;
+  Footprint footprint;
+  double bottom = 0.0;  // metres above the floor
+  double top = 0.0;
+  std::array<std::uint8_t, 3> color = {200, 200, 200};
+  TextureFamily texture = TextureFamily::kPaint;
+  std::uint32_t texture_seed = 0;
+};
+
 // A vertical prism standing on the floor: a semantic object or a plain obstacle.
 struct Solid {
   std::string class_name;  // empty for a non-semantic obstacle
@@ -36,6 +59,11 @@ struct Solid {
   // Rendered in its flat colour without a texture pattern (e.g. the coloured test boxes a
   // detector test model recognises).
   bool plain = false;
+  TextureFamily texture = TextureFamily::kPattern;
+  ObjectShape shape = ObjectShape::kPrism;
+  // The pieces it is built of when shape is kParts (from the class's shape builder or the world
+  // file), each inside the footprint and between base_height and base_height + height.
+  std::vector<Part> parts;
 };
 
 // A box solid of 'class_name' (empty for an obstacle) centred at (x, y), axis-aligned:
@@ -69,6 +97,28 @@ struct CameraSpec {
   double pitch_deg = 0.0;  // positive looks down
   double forward_offset = 0.0;
   double depth_noise_std = 0.0;  // metres, per-pixel Gaussian noise on the depth image
+  double roll_deg = 0.0;         // positive turns the image clockwise as the camera sees it
+  double exposure = 1.0;         // gain on the rendered colours (1: as shaded)
+  double rgb_noise_std = 0.0;    // per-pixel Gaussian noise on each colour channel (0..255)
+  double blur_sigma_px = 0.0;    // Gaussian blur of the colour image (0: sharp)
+};
+
+// Light on the scene. Without it (enabled false) a face is shaded by how squarely the camera
+// sees it, as every world was before lighting existed (the bundled figures were measured so).
+struct LightingSpec {
+  bool enabled = false;
+  double ambient = 0.45;  // fraction of a surface's colour lit from everywhere
+  double directional = 0.55;
+  Eigen::Vector3d direction = Eigen::Vector3d(0.4, 0.3, -1.0);  // the light travels along it
+};
+
+// The look of the room's shell. kPattern walls and a plain grey floor are the defaults of the
+// bundled worlds.
+struct ShellLookSpec {
+  TextureFamily wall_texture = TextureFamily::kPattern;
+  bool textured_floor = false;
+  std::array<std::uint8_t, 3> floor_color = {118, 118, 118};
+  TextureFamily floor_texture = TextureFamily::kWood;
 };
 
 // The detection error model (DESIGN.md §3.1).
@@ -102,7 +152,11 @@ struct World {
   std::uint32_t seed = 0;
   std::vector<std::vector<Eigen::Vector2d>> walls;  // polylines
   double wall_height = 2.5;
-  double wall_thickness = 0.0;   // 0 = infinitely thin segments
+  double wall_thickness = 0.0;  // 0 = infinitely thin segments
+  ShellLookSpec shell;
+  LightingSpec lighting;
+  // How objects of the ten classes are built when the object does not say (key object_shapes).
+  ObjectShape object_shapes = ObjectShape::kParts;
   std::vector<Solid> objects;    // semantic objects (class_name set)
   std::vector<Solid> obstacles;  // non-semantic
   RobotSpec robot;
@@ -111,6 +165,14 @@ struct World {
   std::vector<Eigen::Vector2d> mapping_route;
   std::vector<Eigen::Vector2d> trial_region;  // polygon
 };
+
+// True when some semantic object of 'world' is built of parts (ObjectShape::kParts).
+inline bool HasObjectParts(const World& world) {
+  for (const Solid& solid : world.objects) {
+    if (solid.shape == ObjectShape::kParts && !solid.parts.empty()) return true;
+  }
+  return false;
+}
 
 // Loads a world (src/sim/world_io.cc); unknown keys, malformed numbers, a wall with fewer than two
 // points, … are errors naming the file, line and key path ("w.yaml:7: objects[2].radius: not a

@@ -33,7 +33,29 @@ std::vector<cv::Point> FixedPolygon(const std::vector<Eigen::Vector2d>& points,
   return out;
 }
 
+// An object built of parts: its footprint lightly tinted, the parts that stand on the floor
+// (legs, bodies: what a low lidar meets) filled and the raised ones (tops, seats, screens)
+// outlined, so a table shows as four legs under the outline of its top.
+void DrawParts(const Solid& solid, const Color& color, TopDownCanvas& canvas) {
+  Color tint;
+  for (int c = 0; c < 3; ++c) tint[c] = static_cast<std::uint8_t>(255 - (255 - color[c]) * 0.3);
+  cv::fillConvexPoly(canvas.image(), FixedPolygon(FootprintOutline(solid.footprint), canvas),
+                     Bgr(tint), cv::LINE_AA, kShift);
+  for (const Part& part : solid.parts) {
+    const std::vector<cv::Point> polygon = FixedPolygon(FootprintOutline(part.footprint), canvas);
+    if (part.bottom <= solid.base_height + 0.1) {
+      cv::fillConvexPoly(canvas.image(), polygon, Bgr(color), cv::LINE_AA, kShift);
+    } else {
+      cv::polylines(canvas.image(), polygon, true, Bgr(color), 1, cv::LINE_AA, kShift);
+    }
+  }
+}
+
 void DrawSolid(const Solid& solid, const Color& color, TopDownCanvas& canvas) {
+  if (solid.shape == ObjectShape::kParts && !solid.parts.empty()) {
+    DrawParts(solid, color, canvas);
+    return;
+  }
   const std::vector<cv::Point> polygon = FixedPolygon(FootprintOutline(solid.footprint), canvas);
   cv::fillConvexPoly(canvas.image(), polygon, Bgr(color), cv::LINE_AA, kShift);
   // A thin solid (a door in its wall) would be all outline: only thicker ones get one.

@@ -29,6 +29,13 @@ Status ParsePointList(const yaml::Node& node, std::size_t min_points, const std:
 
 std::string JoinNames(const std::vector<std::string>& names);
 
+// The list root[key] ("objects" or "obstacles") of solids; objects of the classes with a shape
+// (object_shapes.h) are built of parts unless the world or the object says shape: prism.
+Status ParseSolids(const yaml::Node& root, const std::string& key, const World& world,
+                   std::vector<Solid>* solids);
+// The world's object_shapes, shell (wall and floor looks) and lighting keys.
+Status ParseShellAndLighting(const yaml::Node& root, World* world);
+
 // The robot section (start pose, lidar, camera, odometry noise, speeds and rates).
 Status ParseRobot(const yaml::Node& node, RobotSpec* robot);
 // The detection error model section.

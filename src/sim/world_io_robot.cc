@@ -30,8 +30,9 @@ Status ParseLidar(const Node& node, LidarSpec* lidar) {
 }
 
 Status ParseCamera(const Node& node, CameraSpec* camera) {
-  SEMCHAIN_RETURN_IF_ERROR(node.CheckKeys({"height", "fov_deg", "width", "height_px", "max_range",
-                                           "pitch_deg", "forward_offset", "depth_noise_std"}));
+  SEMCHAIN_RETURN_IF_ERROR(node.CheckKeys(
+      {"height", "fov_deg", "width", "height_px", "max_range", "pitch_deg", "roll_deg",
+       "forward_offset", "depth_noise_std", "exposure", "rgb_noise_std", "blur_sigma_px"}));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "height", &camera->height, false));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "fov_deg", &camera->fov_deg, false));
   if (camera->fov_deg >= 180.0) return node.Get("fov_deg")->Error("must be below 180");
@@ -39,7 +40,11 @@ Status ParseCamera(const Node& node, CameraSpec* camera) {
   SEMCHAIN_RETURN_IF_ERROR(ReadPositiveInt(node, "height_px", &camera->height_px));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "max_range", &camera->max_range, false));
   SEMCHAIN_RETURN_IF_ERROR(ReadInRange(node, "pitch_deg", -89.0, 89.0, &camera->pitch_deg));
+  SEMCHAIN_RETURN_IF_ERROR(ReadInRange(node, "roll_deg", -45.0, 45.0, &camera->roll_deg));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(node, "forward_offset", &camera->forward_offset));
+  SEMCHAIN_RETURN_IF_ERROR(ReadInRange(node, "exposure", 0.05, 20.0, &camera->exposure));
+  SEMCHAIN_RETURN_IF_ERROR(ReadInRange(node, "rgb_noise_std", 0.0, 128.0, &camera->rgb_noise_std));
+  SEMCHAIN_RETURN_IF_ERROR(ReadInRange(node, "blur_sigma_px", 0.0, 50.0, &camera->blur_sigma_px));
   return ReadNonNegative(node, "depth_noise_std", &camera->depth_noise_std);
 }
 

@@ -189,3 +189,87 @@ TEST(WorldIoTest, LoadsWaypointFiles) {
 
 }  // namespace
 }  // namespace semchain::sim
+
+namespace semchain::sim {
+namespace {
+
+constexpr char kFurnished[] = R"(walls:
+  - [[0, 0], [6, 0], [6, 4], [0, 4], [0, 0]]
+shell: {wall_texture: paint, floor_texture: wood, floor_color: [150, 110, 80]}
+lighting: {ambient: 0.4, directional: 0.6, direction: [1, 0, -1]}
+objects:
+  - {class: table, x: 2.0, y: 2.0, width: 1.2, depth: 0.7, height: 0.75}
+  - {class: computer, x: 2.0, y: 2.1, width: 0.5, depth: 0.2, height: 0.4, base_height: 0.75}
+  - {class: chair, x: 4.0, y: 2.0, width: 0.5, depth: 0.5, height: 0.9, shape: prism}
+  - {class: sofa, x: 4.5, y: 3.4, width: 1.6, depth: 0.8, height: 0.8, color: [10, 20, 30], texture: metal}
+  - class: stool
+    x: 1.0
+    y: 3.0
+    radius: 0.2
+    height: 0.5
+    parts:
+      - {radius: 0.2, bottom: 0.46, top: 0.5}
+      - {radius: 0.03, top: 0.46, texture: metal, color: [90, 90, 90]}
+robot:
+  start: [1.0, 1.0, 0.0]
+  camera: {roll_deg: 3, exposure: 1.2, rgb_noise_std: 2, blur_sigma_px: 0.5}
+)";
+
+TEST(WorldIoTest, ObjectsOfTheTenClassesAreBuiltOfParts) {
+  const Result<World> world = ParseWorld(kFurnished, "flat.yaml");
+  ASSERT_TRUE(world.ok()) << world.status().message();
+  const std::vector<Solid>& objects = world->objects;
+  EXPECT_EQ(objects[0].shape, ObjectShape::kParts);
+  EXPECT_GE(objects[0].parts.size(), 5u);                   // a top and four legs at least
+  EXPECT_DOUBLE_EQ(objects[1].parts.front().bottom, 0.75);  // standing on the table
+  EXPECT_EQ(objects[2].shape, ObjectShape::kPrism);
+  EXPECT_TRUE(objects[2].parts.empty());
+  // A fixed colour and finish hold for the main surfaces.
+  EXPECT_EQ(objects[3].color, (std::array<std::uint8_t, 3>{10, 20, 30}));
+  EXPECT_EQ(objects[3].texture, TextureFamily::kMetal);
+  // Explicit parts, placed in the world frame.
+  ASSERT_EQ(objects[4].parts.size(), 2u);
+  EXPECT_EQ(objects[4].parts[1].footprint.shape, Footprint::Shape::kCircle);
+  EXPECT_TRUE(objects[4].parts[1].footprint.center.isApprox(Eigen::Vector2d(1.0, 3.0)));
+  EXPECT_DOUBLE_EQ(objects[4].parts[1].top, 0.46);
+  EXPECT_EQ(objects[4].parts[1].texture, TextureFamily::kMetal);
+  EXPECT_TRUE(world->lighting.enabled);
+  EXPECT_TRUE(world->shell.textured_floor);
+  EXPECT_EQ(world->shell.wall_texture, TextureFamily::kPaint);
+  EXPECT_DOUBLE_EQ(world->robot.camera.roll_deg, 3.0);
+  EXPECT_DOUBLE_EQ(world->robot.camera.exposure, 1.2);
+  // The computer stands on the table: their footprints overlap, their heights do not.
+  EXPECT_TRUE(ValidateWorld(*world, "flat.yaml").ok());
+  // Two instances of a class differ unless the world fixes their look.
+  const Result<World> again = ParseWorld(kFurnished, "flat.yaml");
+  EXPECT_EQ(again->objects[0].color, objects[0].color);
+}
+
+TEST(WorldIoTest, BadShapesTexturesAndPartsAreErrors) {
+  const auto error = [](const std::string& yaml) {
+    const Result<World> world = ParseWorld(yaml, "w.yaml");
+    return world.ok() ? std::string() : world.status().message();
+  };
+  std::string yaml = kFurnished;
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = yaml;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  EXPECT_EQ(error(with("shape: prism", "shape: blob")),
+            "w.yaml:8: objects[2].shape: 'blob' is not a shape (parts, prism)");
+  EXPECT_EQ(error(with("texture: metal}", "texture: velvet}")),
+            "w.yaml:9: objects[3].texture: 'velvet' is not a texture (pattern, wood, fabric, "
+            "metal, plastic, paint)");
+  EXPECT_EQ(error(with("{radius: 0.03, top: 0.46", "{x: 0.25, radius: 0.03, top: 0.46")),
+            "w.yaml:17: objects[4].parts[1]: lies outside the object's footprint");
+  EXPECT_EQ(
+      error(with("{radius: 0.2, bottom: 0.46, top: 0.5}", "{radius: 0.2, bottom: 0.46, top: 0.6}")),
+      "w.yaml:16: objects[4].parts[0]: needs 0 <= bottom < top <= the object's height "
+      "(0.5)");
+  EXPECT_EQ(error(with("lighting: {ambient: 0.4,", "lighting: {ambiant: 0.4,")).substr(0, 30),
+            "w.yaml:4: lighting.ambiant: un");
+}
+
+}  // namespace
+}  // namespace semchain::sim

@@ -87,7 +87,11 @@ Status CheckSolids(const World& world, const std::vector<NamedSolid>& solids) {
       }
     }
     for (std::size_t j = 0; j < i; ++j) {
-      if (OutlinesOverlap(outline, Outline(solids[j].solid->footprint))) {
+      // One may stand on the other (a computer on a table): their heights must not overlap.
+      const Solid& other = *solids[j].solid;
+      const bool stacked = solid.base_height >= other.base_height + other.height - 1e-9 ||
+                           other.base_height >= solid.base_height + solid.height - 1e-9;
+      if (!stacked && OutlinesOverlap(outline, Outline(other.footprint))) {
         return Status::Error(what + " overlaps " + solids[j].path);
       }
     }

@@ -1,0 +1,89 @@
+// semchain dataset --out DIR --images N --seed S [--size WxH] [--images-per-room K] [--threads T]
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "apps/command.h"
+#include "core/progress_bar.h"
+#include "sensors/detection.h"
+#include "sim/detector_dataset.h"
+
+namespace semchain::app {
+namespace {
+
+struct DatasetArgs {
+  std::string out;
+  int images = 0;
+  std::uint64_t seed = 0;
+  std::string size = "320x256";
+  int images_per_room = 10;
+  int threads = 2;
+};
+
+Status ParseSize(const std::string& text, int* width, int* height) {
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%c", width, height, &extra) != 2) {
+    return Status::Error("--size: expected WIDTHxHEIGHT (e.g. 320x256), got '" + text + "'");
+  }
+  return Status::Ok();
+}
+
+Status RunDataset(const DatasetArgs& args) {
+  sim::DatasetOptions options;
+  options.images = args.images;
+  options.seed = args.seed;
+  options.images_per_room = args.images_per_room;
+  options.threads = args.threads;
+  SEMCHAIN_RETURN_IF_ERROR(ParseSize(args.size, &options.width, &options.height));
+  SEMCHAIN_RETURN_IF_ERROR(options.Validate());
+  ProgressBar bar("dataset", static_cast<std::size_t>(options.images));
+  Result<sim::DatasetSummary> summary = sim::WriteDetectorDataset(
+      args.out, options, [&bar](int done) { bar.Update(static_cast<std::size_t>(done)); });
+  if (!summary.ok()) return summary.status();
+  bar.Finish();
+  std::printf("wrote %s: %d / %d / %d images (train / val / test) from %d / %d / %d rooms\n",
+              args.out.c_str(), summary->images[0], summary->images[1], summary->images[2],
+              summary->rooms[0], summary->rooms[1], summary->rooms[2]);
+  std::printf("%-10s %7s %7s %7s\n", "class", "train", "val", "test");
+  for (std::size_t c = 0; c < summary->instances.size(); ++c) {
+    std::printf("%-10s %7d %7d %7d\n", DefaultClassNames()[c].c_str(), summary->instances[c][0],
+                summary->instances[c][1], summary->instances[c][2]);
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+void AddDatasetCommand(CLI::App& app, int& exit_code) {
+  CLI::App* command = app.add_subcommand(
+      "dataset",
+      "Render randomized furnished rooms into a YOLO-format detector data set (DESIGN.md "
+      "section 5.6): images/{train,val,test}/*.png, labels/{train,val,test}/*.txt "
+      "('class cx cy w h', normalised), data.yaml; splits from disjoint rooms");
+  auto args = std::make_shared<DatasetArgs>();
+  command->add_option("--out", args->out, "Data set directory to write (replaces an earlier one)")
+      ->required();
+  command->add_option("--images", args->images, "Number of images (at least 1)")->required();
+  command
+      ->add_option("--seed", args->seed,
+                   "Seed of the rooms and views; the same seed gives "
+                   "the same bytes")
+      ->capture_default_str();
+  command->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  command
+      ->add_option("--images-per-room", args->images_per_room,
+                   "Frames taken in each random room (rooms go wholly to one split)")
+      ->capture_default_str();
+  command
+      ->add_option("--threads", args->threads,
+                   "Rendering threads (the output does not "
+                   "depend on them)")
+      ->capture_default_str();
+  command->callback([args, &exit_code] {
+    const Status status = RunDataset(*args);
+    exit_code = status.ok() ? 0 : ReportError(status);
+  });
+}
+
+}  // namespace semchain::app

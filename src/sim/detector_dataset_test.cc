@@ -1,0 +1,173 @@
+#include "sim/detector_dataset.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "io/yolo_labels.h"
+#include "sensors/detection.h"
+#include "sim/detection_model.h"
+#include "sim/random_room.h"
+#include "sim/scene.h"
+
+namespace semchain::sim {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path TempPath(const std::string& name) {
+  const fs::path path = fs::path(testing::TempDir()) / name;
+  fs::remove_all(path);
+  return path;
+}
+
+// Every file under 'dir' with its bytes, by relative path.
+std::map<std::string, std::string> Snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    files[fs::relative(entry.path(), dir).string()] = *ReadFile(entry.path());
+  }
+  return files;
+}
+
+DatasetOptions SmallSet(int threads) {
+  DatasetOptions options;
+  options.images = 24;
+  options.images_per_room = 2;
+  options.seed = 17;
+  options.width = 160;
+  options.height = 128;
+  options.threads = threads;
+  return options;
+}
+
+TEST(RandomRoomTest, HoldsEveryClassAndPassesValidation) {
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    const World world = RandomRoom(seed);
+    std::set<std::string> classes;
+    for (const Solid& solid : world.objects) {
+      classes.insert(solid.class_name);
+      EXPECT_EQ(solid.shape, ObjectShape::kParts);
+      EXPECT_FALSE(solid.parts.empty());
+    }
+    EXPECT_GE(classes.size(), 9u) << "seed " << seed;
+    EXPECT_TRUE(classes.count("door") && classes.count("computer") && classes.count("clock"))
+        << "seed " << seed;
+  }
+}
+
+// The truth box of every labelled object is the bounding box of its rendered pixels, and its
+// label line parses back to that box.
+TEST(DetectorDatasetTest, TruthBoxesBoundTheRenderedMasksAndLabelsParseBack) {
+  int checked = 0;
+  for (std::uint64_t seed = 0; seed < 6; ++seed) {
+    const World world = RandomRoom(seed);
+    const Scene scene(world);
+    for (int target = 0; target < static_cast<int>(world.objects.size()); target += 3) {
+      const std::optional<CameraView> view =
+          RandomCameraView(world, target, 320, 256, seed + target);
+      if (!view) continue;
+      RenderOptions options = MakeRenderOptions(view->camera, 1);
+      options.count_unoccluded = true;
+      const RgbdImage image =
+          RenderRgbd(scene, MakeMountedCamera(view->camera), view->robot_pose, options);
+      const std::vector<TruthBox> boxes = TruthBoxes(world, image, 0.3, 12);
+      // Masks, found independently.
+      std::map<int, std::array<int, 4>> bounds;  // object -> u0, v0, u1, v1 (inclusive)
+      for (int v = 0; v < image.object_ids.rows; ++v) {
+        for (int u = 0; u < image.object_ids.cols; ++u) {
+          const int id = image.object_ids.at<std::int32_t>(v, u);
+          if (id < 0) continue;
+          auto [it, fresh] = bounds.try_emplace(id, std::array<int, 4>{u, v, u, v});
+          if (!fresh) {
+            it->second = {std::min(it->second[0], u), std::min(it->second[1], v),
+                          std::max(it->second[2], u), std::max(it->second[3], v)};
+          }
+        }
+      }
+      std::string text;
+      for (const TruthBox& box : boxes) text += LabelLine(box, 320, 256) + "\n";
+      const Result<std::vector<YoloLabel>> parsed = ParseYoloLabels(text, "labels", 10);
+      ASSERT_TRUE(parsed.ok()) << parsed.status().message();
+      ASSERT_EQ(parsed->size(), boxes.size());
+      for (std::size_t i = 0; i < boxes.size(); ++i) {
+        // Find the object this box belongs to: same class, same mask bounds.
+        bool matched = false;
+        for (const auto& [id, b] : bounds) {
+          if (DefaultClassNames()[boxes[i].class_id] != world.objects[id].class_name) continue;
+          const double mask[4] = {double(b[0]), double(b[1]), b[2] + 1.0, b[3] + 1.0};
+          bool same = true;
+          for (int k = 0; k < 4; ++k) same = same && std::abs(mask[k] - boxes[i].box[k]) <= 1.0;
+          matched = matched || same;
+        }
+        EXPECT_TRUE(matched) << "box " << i << " bounds no object's mask";
+        const std::array<double, 4> back = (*parsed)[i].PixelBox(320, 256);
+        for (int k = 0; k < 4; ++k) EXPECT_NEAR(back[k], boxes[i].box[k], 0.5);
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(DetectorDatasetTest, SameSeedGivesTheSameBytesWhateverTheThreads) {
+  const fs::path out = TempPath("dataset_same");
+  ASSERT_TRUE(WriteDetectorDataset(out, SmallSet(1)).ok());
+  const auto first = Snapshot(out);
+  const Result<DatasetSummary> again = WriteDetectorDataset(out, SmallSet(2));  // replaces it
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  EXPECT_EQ(Snapshot(out), first);
+  EXPECT_EQ(first.size(), 2u * 24u + 2u);  // images and labels, data.yaml, summary.json
+  EXPECT_EQ(again->images[0] + again->images[1] + again->images[2], 24);
+}
+
+TEST(DetectorDatasetTest, SplitsComeFromDisjointRooms) {
+  const fs::path out = TempPath("dataset_splits");
+  const Result<DatasetSummary> summary = WriteDetectorDataset(out, SmallSet(2));
+  ASSERT_TRUE(summary.ok()) << summary.status().message();
+  std::map<std::string, std::set<std::string>> rooms;  // split -> room prefixes
+  for (const char* split : {"train", "val", "test"}) {
+    for (const auto& entry : fs::directory_iterator(out / "images" / split)) {
+      const std::string stem = entry.path().stem().string();
+      rooms[split].insert(stem.substr(0, stem.find('_')));
+      EXPECT_TRUE(fs::exists(out / "labels" / split / (stem + ".txt"))) << stem;
+      EXPECT_TRUE(ReadYoloLabels(out / "labels" / split / (stem + ".txt"), 10).ok()) << stem;
+    }
+  }
+  EXPECT_FALSE(rooms["train"].empty());
+  EXPECT_FALSE(rooms["val"].empty());
+  EXPECT_FALSE(rooms["test"].empty());
+  for (const std::string& room : rooms["train"]) {
+    EXPECT_FALSE(rooms["val"].count(room) || rooms["test"].count(room)) << room;
+  }
+  for (const std::string& room : rooms["val"]) EXPECT_FALSE(rooms["test"].count(room)) << room;
+  const std::string yaml = *ReadFile(out / "data.yaml");
+  EXPECT_NE(yaml.find("train: images/train\nval: images/val\ntest: images/test\nnc: 10\n"),
+            std::string::npos);
+  EXPECT_NE(
+      yaml.find("names: [door, cabinet, bucket, chair, stool, table, sofa, computer, bed, clock]"),
+      std::string::npos);
+}
+
+TEST(DetectorDatasetTest, BadOptionsWriteNothing) {
+  const fs::path out = TempPath("dataset_bad");
+  DatasetOptions options = SmallSet(1);
+  options.images = 0;
+  const Result<DatasetSummary> zero = WriteDetectorDataset(out, options);
+  ASSERT_FALSE(zero.ok());
+  EXPECT_EQ(zero.status().message(), "--images must be at least 1, got 0");
+  EXPECT_FALSE(fs::exists(out));
+  // A directory holding something else is not overwritten.
+  fs::create_directories(out);
+  { std::ofstream(out / "notes.txt") << "mine"; }
+  const Result<DatasetSummary> occupied = WriteDetectorDataset(out, SmallSet(1));
+  ASSERT_FALSE(occupied.ok());
+  EXPECT_EQ(*ReadFile(out / "notes.txt"), "mine");
+}
+
+}  // namespace
+}  // namespace semchain::sim

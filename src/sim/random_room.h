@@ -1,0 +1,38 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/pose2.h"
+#include "sim/world.h"
+
+// Randomized furnished rooms for the detector's training set (semchain dataset, DESIGN.md
+// §5.6): a rectangular room, sometimes with a partition, holding every one of the ten classes
+// at least once (doors and clocks on the walls, cabinets, sofas and beds against them, tables
+// with chairs and computers, stools and buckets anywhere), distractor obstacles of random shape
+// and colour, and random wall, floor and light looks. Everything follows from the seed.
+namespace semchain::sim {
+
+struct RandomRoomOptions {
+  double min_size_meters = 4.5;  // each side of the room
+  double max_size_meters = 8.0;
+  int extra_objects_max = 5;  // beyond one of each class
+  int distractors_max = 4;    // non-semantic obstacles
+};
+
+World RandomRoom(std::uint64_t seed, const RandomRoomOptions& options = {});
+
+// A camera placement in a room: where the robot stands and how its camera is mounted.
+struct CameraView {
+  Pose2 robot_pose;
+  CameraSpec camera;
+};
+
+// A camera at robot height (0.3–1.3 m) in the free space of 'world', aimed at object
+// 'target' (an index into world.objects) from 0.8–5 m with a random heading offset, pitch and
+// roll, with the exposure, noise and blur varied. 'width' × 'height' pixels. Nothing when no
+// free spot sees the target after a number of tries.
+std::optional<CameraView> RandomCameraView(const World& world, int target, int width, int height,
+                                           std::uint64_t seed);
+
+}  // namespace semchain::sim
