@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
 
 #include "apps/command.h"
 
@@ -42,6 +43,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
+  } catch (const std::exception& error) {
+    // A robot's tool never ends in terminate(): whatever escaped a command (out of memory, a
+    // library's assertion) is one error line and exit 1.
+    return semchain::app::ReportError(semchain::Status::Error(error.what()));
   }
   return exit_code;
 }

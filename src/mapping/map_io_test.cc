@@ -98,6 +98,28 @@ TEST_F(MapIoTest, ErrorsNameTheProblem) {
   EXPECT_NE(map.status().message().find("truncated"), std::string::npos);
 }
 
+// A header may ask for anything; nothing is allocated for pixels the file does not hold.
+TEST_F(MapIoTest, HeadersAskingForHugeImagesAreRefused) {
+  const std::string yaml =
+      "resolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.2\nnegate: 0\n";
+  Write("huge.pgm", "P5\n99999 99999\n255\n\x01\x02");
+  Write("huge.yaml", "image: huge.pgm\n" + yaml);
+  Result<MapImage> map = ReadMap(dir_ / "huge.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_NE(map.status().message().find("PGM of 99999 x 99999 pixels is larger than the 100 "
+                                        "million pixels a map may have"),
+            std::string::npos)
+      << map.status().message();
+  // Within the limit but far more than the file holds: truncated, found before allocating.
+  Write("tall.pgm", "P2\n9000 9000\n255\n1 2 3\n");
+  Write("tall.yaml", "image: tall.pgm\n" + yaml);
+  map = ReadMap(dir_ / "tall.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_NE(map.status().message().find("truncated (the header asks for 9000 x 9000 pixels)"),
+            std::string::npos)
+      << map.status().message();
+}
+
 TEST_F(MapIoTest, GridToMapAndBack) {
   OccupancyGrid grid({}, Eigen::Vector2d(0.0, 0.0));
   const Pose2 pose(0.0, 0.0, 0.0);

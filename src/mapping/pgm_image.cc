@@ -53,10 +53,20 @@ Result<GrayImage> ParsePgm(const std::string& data, const std::filesystem::path&
   }
   GrayImage image{width, height, {}};
   const std::size_t count = static_cast<std::size_t>(width) * height;
+  if (count > kMaxImagePixels) {
+    return error("PGM of " + std::to_string(width) + " x " + std::to_string(height) +
+                 " pixels is larger than the " + std::to_string(kMaxImagePixels / 1000000) +
+                 " million pixels a map may have");
+  }
+  // Check the data is there before allocating for it: the header alone may ask for gigabytes.
+  const bool binary = data[1] == '5';
+  if (binary ? data.size() < pos + 1 + count : (data.size() - pos) / 2 < count) {
+    return error("PGM pixel data truncated (the header asks for " + std::to_string(width) + " x " +
+                 std::to_string(height) + " pixels)");
+  }
   image.pixels.reserve(count);
-  if (data[1] == '5') {
+  if (binary) {
     ++pos;  // exactly one whitespace byte after maxval
-    if (data.size() < pos + count) return error("PGM pixel data truncated");
     for (std::size_t i = 0; i < count; ++i) {
       image.pixels.push_back(static_cast<std::uint8_t>(data[pos + i]));
     }
@@ -80,6 +90,10 @@ Result<GrayImage> DecodeWithOpenCv(const std::string& data, const std::filesyste
   const cv::Mat decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   if (decoded.empty() || decoded.depth() != CV_8U) {
     return Status::Error(path.string() + ": cannot decode image (need 8-bit PGM, PNG, ...)");
+  }
+  if (static_cast<std::size_t>(decoded.cols) * decoded.rows > kMaxImagePixels) {
+    return Status::Error(path.string() + ": image of " + std::to_string(decoded.cols) + " x " +
+                         std::to_string(decoded.rows) + " pixels is larger than a map may be");
   }
   const int channels = std::min(decoded.channels(), 3);  // alpha is not part of the mean
   GrayImage image{decoded.cols, decoded.rows, {}};

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <vector>
 
@@ -14,6 +15,10 @@ struct GrayImage {
   // Row-major from the top row; for colour images the mean of the channels (as map_server).
   std::vector<double> pixels;
 };
+
+// The most pixels a map image may have: 100 million (a 500 m × 500 m floor at 5 cm; the MIT
+// Killian map has 25 million). A header asking for more is refused before anything is allocated.
+inline constexpr std::size_t kMaxImagePixels = 100'000'000;
 
 // Reads a binary (P5) or ASCII (P2) PGM with maxval <= 255 with our own parser (exact), and
 // anything else OpenCV can decode (PNG, BMP…). Alpha channels are ignored.

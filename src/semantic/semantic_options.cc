@@ -10,10 +10,10 @@ std::map<std::string, ClassShapePrior> DefaultClassPriors() {
   priors["bucket"] = {Shape::kCircle, 0.0, 0.0, 0.15, 0.03};
   priors["chair"] = {Shape::kBox, 0.5, 0.5, 0.0, 0.05};
   priors["stool"] = {Shape::kCircle, 0.0, 0.0, 0.17, 0.03};
-  priors["table"] = {Shape::kBox, 1.2, 0.75, 0.0, 0.15};
-  priors["sofa"] = {Shape::kBox, 1.8, 0.88, 0.0, 0.15};
+  priors["table"] = {Shape::kBox, 1.2, 0.75, 0.0, 0.05};
+  priors["sofa"] = {Shape::kBox, 1.8, 0.88, 0.0, 0.05};
   priors["computer"] = {Shape::kBox, 0.5, 0.22, 0.0, 0.05};
-  priors["bed"] = {Shape::kBox, 1.4, 2.0, 0.0, 0.15};
+  priors["bed"] = {Shape::kBox, 1.4, 2.0, 0.0, 0.05};
   priors["clock"] = {Shape::kBox, 0.32, 0.05, 0.0, 0.03};
   return priors;
 }

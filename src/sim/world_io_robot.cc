@@ -17,11 +17,17 @@ Status ReadPositiveInt(const Node& map, const std::string& key, int* value) {
   return Status::Ok();
 }
 
+constexpr int kMaxCameraSide = 8192;
+constexpr int kMaxLidarBeams = 100'000;
+
 Status ParseLidar(const Node& node, LidarSpec* lidar) {
   SEMCHAIN_RETURN_IF_ERROR(
       node.CheckKeys({"height", "beams", "fov_deg", "max_range", "noise_std", "forward_offset"}));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "height", &lidar->height, false));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositiveInt(node, "beams", &lidar->beams));
+  if (lidar->beams > kMaxLidarBeams) {
+    return node.Get("beams")->Error("must be at most " + std::to_string(kMaxLidarBeams));
+  }
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "fov_deg", &lidar->fov_deg, false));
   if (lidar->fov_deg > 360.0) return node.Get("fov_deg")->Error("must be at most 360");
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "max_range", &lidar->max_range, false));
@@ -38,6 +44,13 @@ Status ParseCamera(const Node& node, CameraSpec* camera) {
   if (camera->fov_deg >= 180.0) return node.Get("fov_deg")->Error("must be below 180");
   SEMCHAIN_RETURN_IF_ERROR(ReadPositiveInt(node, "width", &camera->width));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositiveInt(node, "height_px", &camera->height_px));
+  // A frame is rendered, kept and encoded whole: refuse sizes no camera has.
+  for (const auto& [key, value] :
+       {std::pair{"width", camera->width}, {"height_px", camera->height_px}}) {
+    if (value > kMaxCameraSide) {
+      return node.Get(key)->Error("must be at most " + std::to_string(kMaxCameraSide) + " pixels");
+    }
+  }
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "max_range", &camera->max_range, false));
   SEMCHAIN_RETURN_IF_ERROR(ReadInRange(node, "pitch_deg", -89.0, 89.0, &camera->pitch_deg));
   SEMCHAIN_RETURN_IF_ERROR(ReadInRange(node, "roll_deg", -45.0, 45.0, &camera->roll_deg));
