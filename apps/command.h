@@ -23,6 +23,8 @@ void AddDatasetCommand(CLI::App& app, int& exit_code);
 void AddBenchLocalize(CLI::App& bench, int& exit_code);
 // `bench reloc` (bench_reloc_command.cc), registered by AddBenchCommand.
 void AddBenchReloc(CLI::App& bench, int& exit_code);
+// `bench detector` (bench_detector_command.cc), registered by AddBenchCommand.
+void AddBenchDetector(CLI::App& bench, int& exit_code);
 
 // Prints "semchain: error: <message>" on one line to stderr and returns the exit code 1.
 int ReportError(const Status& status);

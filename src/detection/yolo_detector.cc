@@ -108,6 +108,18 @@ Result<cv::Mat> YoloDetector::Forward(const cv::Mat& input_rgb) {
   }
 }
 
+YoloDetector::Cost YoloDetector::ModelCost() {
+  Cost cost;
+  const cv::dnn::MatShape input = {1, 3, options_.input_height, options_.input_width};
+  cost.gflops = static_cast<double>(net_.getFLOPS(input)) * 1e-9;
+  for (const std::string& name : net_.getLayerNames()) {
+    for (const cv::Mat& blob : net_.getLayer(net_.getLayerId(name))->blobs) {
+      cost.parameters += static_cast<std::int64_t>(blob.total());
+    }
+  }
+  return cost;
+}
+
 Result<std::vector<Detection>> YoloDetector::Detect(const cv::Mat& rgb) {
   if (rgb.empty() || rgb.type() != CV_8UC3) {
     return Status::Error("the detector needs a non-empty 8-bit 3-channel RGB image");

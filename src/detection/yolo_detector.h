@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <opencv2/dnn.hpp>
@@ -44,6 +45,14 @@ class YoloDetector final : public Detector {
                                                     const YoloOptions& options);
 
   Result<std::vector<Detection>> Detect(const cv::Mat& rgb) override;
+
+  // What the model costs at its input size, as OpenCV counts its graph: floating-point
+  // operations of one forward pass and the weights' element count.
+  struct Cost {
+    double gflops = 0.0;
+    std::int64_t parameters = 0;
+  };
+  Cost ModelCost();
   const std::vector<std::string>& class_names() const override { return class_names_; }
   const HeadLayout& head() const { return head_; }
   const YoloOptions& options() const { return options_; }
