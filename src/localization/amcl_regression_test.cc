@@ -34,12 +34,11 @@ constexpr double kExpectedTracking[] = {
 void Record(const Amcl& amcl, std::vector<double>* trace) {
   const AmclEstimate e = amcl.Estimate();
   const std::vector<Particle>& particles = amcl.particles();
-  trace->insert(trace->end(), {static_cast<double>(particles.size()),
-                               static_cast<double>(e.clusters), e.pose.x, e.pose.y, e.pose.theta,
-                               e.cluster_weight, e.covariance(0, 0), e.covariance(1, 1),
-                               e.covariance(2, 2), amcl.w_slow(), amcl.w_fast(),
-                               amcl.mean_beam_likelihood(),
-                               static_cast<double>(amcl.counters().random_particles)});
+  trace->insert(trace->end(),
+                {static_cast<double>(particles.size()), static_cast<double>(e.clusters), e.pose.x,
+                 e.pose.y, e.pose.theta, e.cluster_weight, e.covariance(0, 0), e.covariance(1, 1),
+                 e.covariance(2, 2), amcl.w_slow(), amcl.w_fast(), amcl.mean_beam_likelihood(),
+                 static_cast<double>(amcl.counters().random_particles)});
   double x = 0.0, y = 0.0, theta = 0.0, weight = 0.0;
   for (const Particle& p : particles) {
     x += p.pose.x;

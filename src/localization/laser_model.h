@@ -52,8 +52,14 @@ class LikelihoodFieldModel : public LaserModel {
   double BeamLikelihood(double distance, double range_max) const;
 
  private:
+  // Weight on the distance field itself (maps whose distances the quantized field cannot name).
+  double WeightDirect(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const;
+
   const LocalizationMap& map_;
   double z_hit_, z_rand_, factor_;
+  // z_hit exp(−d² / 2σ²) for each distinct distance of map_.quantized_field() (Prob. Rob.
+  // §6.4's precomputed likelihood field, per distance instead of per cell).
+  std::vector<double> hit_terms_;
 };
 
 // nav2 beam: the expected range z* is ray cast on the map; pz = z_hit exp(−(z − z*)² / 2σ_hit²)
