@@ -1,6 +1,7 @@
 #include "localization/laser_model.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace semchain::localization {
@@ -48,38 +49,39 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
   const QuantizedDistanceField& classes = map_.quantized_field();
   if (!classes.ok()) return WeightDirect(beams, pose, mean_beam);
   // The same arithmetic as WeightDirect, term for term (so the same weights to the last bit),
-  // with exp replaced by a table look-up and DistanceField::CellOf's floor by a truncation
-  // that is corrected below zero.
+  // with exp replaced by a table look-up and DistanceField::CellOf's floor(a / resolution) by
+  // a product with the inverse: the two differ by at most an ulp, so their floors differ only
+  // when the product lies within a hair of an integer, and then the division is done.
   const Pose2 laser = pose * beams.laser_offset;
   const mapping::DistanceField& field = map_.distance_field();
   const double c = std::cos(laser.theta);
   const double s = std::sin(laser.theta);
   const double origin_x = field.origin().x(), origin_y = field.origin().y();
-  const double resolution = field.resolution();
   const double rand_term = z_rand_ / beams.range_max;
-  const unsigned width = static_cast<unsigned>(classes.width());
-  const unsigned height = static_cast<unsigned>(classes.height());
-  const double* hit_terms = hit_terms_.data();
-  const int off_map = classes.off_map();
+  // In chunks: first every beam's pz (independent of each other), then the sums in beam order
+  // (the same order of additions as before); one loop doing both keeps too many values live and
+  // the running sum spills to memory.
+  constexpr std::size_t kChunk = 64;
+  std::array<double, kChunk> pz;
   double p = 1.0, sum = 0.0;
   int used = 0;
-  for (std::size_t i = 0; i < beams.ranges.size(); ++i) {
-    const double range = beams.ranges[i];
-    if (range >= beams.range_max) continue;
-    const Eigen::Vector2d& d = beams.directions[i];
-    const double fx = (laser.x + range * (c * d.x() - s * d.y()) - origin_x) / resolution;
-    const double fy = (laser.y + range * (s * d.x() + c * d.y()) - origin_y) / resolution;
-    int x = static_cast<int>(fx);
-    int y = static_cast<int>(fy);
-    x -= fx < x ? 1 : 0;
-    y -= fy < y ? 1 : 0;
-    const int k = static_cast<unsigned>(x) < width && static_cast<unsigned>(y) < height
-                      ? classes.At(x, y)
-                      : off_map;
-    const double pz = hit_terms[k] + rand_term;
-    p += pz * pz * pz;
-    sum += pz;
-    ++used;
+  const std::size_t n = beams.ranges.size();
+  for (std::size_t begin = 0; begin < n; begin += kChunk) {
+    const std::size_t end = std::min(n, begin + kChunk);
+    std::size_t count = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const double range = beams.ranges[i];
+      if (range >= beams.range_max) continue;
+      const Eigen::Vector2d& d = beams.directions[i];
+      const int k = classes.ClassAt(laser.x + range * (c * d.x() - s * d.y()) - origin_x,
+                                    laser.y + range * (s * d.x() + c * d.y()) - origin_y);
+      pz[count++] = hit_terms_[static_cast<std::size_t>(k)] + rand_term;
+    }
+    for (std::size_t j = 0; j < count; ++j) {
+      p += pz[j] * pz[j] * pz[j];
+      sum += pz[j];
+    }
+    used += static_cast<int>(count);
   }
   *mean_beam = used > 0 ? sum / used : 0.0;
   return p;

@@ -68,7 +68,12 @@ struct SortedBins {
 
 SortedBins BinParticles(const std::vector<Particle>& particles, const Eigen::Vector3d& bin_size,
                         int heading_bins) {
-  std::vector<std::pair<std::uint64_t, int>> keyed(particles.size());
+  // Bins numbered as first met (one hash look-up per particle), then only the distinct keys
+  // sorted: a converged cloud has far fewer bins than particles.
+  KeyIndex met;
+  met.Clear(particles.size());
+  std::vector<std::uint64_t> met_keys;
+  std::vector<int> bin_of(particles.size());
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Pose2& p = particles[i].pose;
     const int heading = std::clamp(static_cast<int>(std::floor((p.theta + kPi) / bin_size.z())), 0,
@@ -76,21 +81,31 @@ SortedBins BinParticles(const std::vector<Particle>& particles, const Eigen::Vec
     const auto x = static_cast<std::int64_t>(std::floor(p.x / bin_size.x()));
     const auto y = static_cast<std::int64_t>(std::floor(p.y / bin_size.y()));
     SEMCHAIN_CHECK(std::abs(x) < kFieldOffset && std::abs(y) < kFieldOffset);
-    keyed[i] = {PackBin(x, y, heading), static_cast<int>(i)};
+    const std::uint64_t key = PackBin(x, y, heading);
+    const auto [bin, added] = met.Insert(key);
+    if (added) met_keys.push_back(key);
+    bin_of[i] = bin;
   }
-  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> sorted(met_keys.size());
+  for (std::size_t b = 0; b < sorted.size(); ++b) sorted[b] = static_cast<int>(b);
+  std::sort(sorted.begin(), sorted.end(), [&](int a, int b) { return met_keys[a] < met_keys[b]; });
+  std::vector<int> rank(sorted.size());
   SortedBins bins;
-  bins.order.reserve(keyed.size());
-  bins.index.Clear(keyed.size());
-  for (std::size_t i = 0; i < keyed.size(); ++i) {
-    if (i == 0 || keyed[i].first != keyed[i - 1].first) {
-      bins.index.Insert(keyed[i].first);
-      bins.keys.push_back(keyed[i].first);
-      bins.first.push_back(static_cast<int>(i));
-    }
-    bins.order.push_back(keyed[i].second);
+  bins.index.Clear(sorted.size());
+  bins.first.assign(sorted.size() + 1, 0);
+  for (std::size_t r = 0; r < sorted.size(); ++r) {
+    rank[sorted[r]] = static_cast<int>(r);
+    bins.keys.push_back(met_keys[sorted[r]]);
+    bins.index.Insert(met_keys[sorted[r]]);
   }
-  bins.first.push_back(static_cast<int>(keyed.size()));
+  // Counting sort of the particles by bin rank, stable: each bin lists its particles in order.
+  for (const int bin : bin_of) ++bins.first[rank[bin] + 1];
+  for (std::size_t r = 1; r < bins.first.size(); ++r) bins.first[r] += bins.first[r - 1];
+  bins.order.resize(particles.size());
+  std::vector<int> next(bins.first.begin(), bins.first.end() - 1);
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    bins.order[next[rank[bin_of[i]]]++] = static_cast<int>(i);
+  }
   return bins;
 }
 

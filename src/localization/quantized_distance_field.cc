@@ -9,7 +9,10 @@
 namespace semchain::localization {
 
 QuantizedDistanceField::QuantizedDistanceField(const mapping::DistanceField& field)
-    : width_(field.width()), height_(field.height()) {
+    : resolution_(field.resolution()),
+      inverse_resolution_(1.0 / field.resolution()),
+      width_(field.width()),
+      height_(field.height()) {
   constexpr int kMaxClasses = std::numeric_limits<std::uint16_t>::max();
   // The distinct distances, numbered as first met, then sorted.
   KeyIndex seen;

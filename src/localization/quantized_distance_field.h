@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -26,11 +27,39 @@ class QuantizedDistanceField {
   int off_map() const { return static_cast<int>(distances_.size()) - 1; }
   // The number of the distance of cell (x, y), which must lie on the map.
   int At(int x, int y) const { return classes_[static_cast<std::size_t>(y) * width_ + x]; }
+  // The number of the distance at the point 'dx', 'dy' metres from the map origin: of the cell
+  // DistanceField::CellOf finds (floor of the quotient by the resolution), off_map() off it.
+  int ClassAt(double dx, double dy) const {
+    const int x = FloorOfQuotient(dx);
+    const int y = FloorOfQuotient(dy);
+    return static_cast<unsigned>(x) < static_cast<unsigned>(width_) &&
+                   static_cast<unsigned>(y) < static_cast<unsigned>(height_)
+               ? At(x, y)
+               : off_map();
+  }
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
+  // floor(a / resolution) as DistanceField::CellOf computes it, by a product with the inverse
+  // (a division costs as much as the rest of a beam): the product is within an ulp or two of the
+  // quotient, so the floors can differ only when it lies within a hair of an integer, and then
+  // the division decides. -1 (off the map) beyond int range.
+  int FloorOfQuotient(double a) const {
+    const double q = a * inverse_resolution_;
+    if (!(std::abs(q) < 1e9)) return -1;
+    int i = static_cast<int>(q);
+    i -= q < i ? 1 : 0;
+    const double fraction = q - i;
+    if (fraction < 1e-6 || fraction > 1.0 - 1e-6) {
+      return static_cast<int>(std::floor(a / resolution_));
+    }
+    return i;
+  }
+
   bool ok_ = false;
+  double resolution_ = 0.0;
+  double inverse_resolution_ = 0.0;
   int width_ = 0;
   int height_ = 0;
   std::vector<double> distances_;
