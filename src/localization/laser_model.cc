@@ -4,6 +4,10 @@
 #include <array>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace semchain::localization {
 
 LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
@@ -29,6 +33,68 @@ LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
   }
   return beams;
 }
+
+namespace {
+
+// The distance class at the endpoint of a beam of the laser at 'laser' (cos, sin of its heading
+// given), exactly as the scalar code finds it: cell floor((laser + range R(θ) d − origin) /
+// resolution) (QuantizedDistanceField::ClassAt). With SSE2 x and y share one register; each
+// lane does the scalar operations in their order (c dx + (−s) dy is c dx − s dy exactly), so
+// the same doubles and the same cells.
+class EndpointClasses {
+ public:
+  EndpointClasses(const QuantizedDistanceField& classes, const Pose2& laser, double c, double s,
+                  const Eigen::Vector2d& origin)
+      : classes_(classes), laser_(laser), c_(c), s_(s), origin_(origin) {
+#if defined(__SSE2__)
+    cs_ = _mm_set_pd(s, c);
+    minus_s_c_ = _mm_set_pd(c, -s);
+    laser_xy_ = _mm_set_pd(laser.y, laser.x);
+    origin_xy_ = _mm_set_pd(origin.y(), origin.x());
+    inverse_ = _mm_set1_pd(classes.inverse_resolution());
+#endif
+  }
+
+  int ClassOf(double range, const Eigen::Vector2d& d) const {
+#if defined(__SSE2__)
+    const __m128d rotated =
+        _mm_add_pd(_mm_mul_pd(cs_, _mm_set1_pd(d.x())), _mm_mul_pd(minus_s_c_, _mm_set1_pd(d.y())));
+    const __m128d offset =
+        _mm_sub_pd(_mm_add_pd(laser_xy_, _mm_mul_pd(_mm_set1_pd(range), rotated)), origin_xy_);
+    const __m128d q = _mm_mul_pd(offset, inverse_);
+    const __m128d truncated = _mm_cvtepi32_pd(_mm_cvttpd_epi32(q));
+    const __m128d one = _mm_set1_pd(1.0);
+    const __m128d floored = _mm_sub_pd(truncated, _mm_and_pd(_mm_cmplt_pd(q, truncated), one));
+    const __m128d fraction = _mm_sub_pd(q, floored);
+    const __m128d guard = _mm_set1_pd(QuantizedDistanceField::kBorderGuard);
+    const __m128d magnitude = _mm_andnot_pd(_mm_set1_pd(-0.0), q);
+    const __m128d doubtful = _mm_or_pd(
+        _mm_or_pd(_mm_cmplt_pd(fraction, guard), _mm_cmpgt_pd(fraction, _mm_sub_pd(one, guard))),
+        _mm_cmpnlt_pd(magnitude, _mm_set1_pd(QuantizedDistanceField::kMaxQuotient)));
+    if (_mm_movemask_pd(doubtful) != 0) {  // near a cell border or far off: the exact path
+      return classes_.ClassAt(_mm_cvtsd_f64(offset),
+                              _mm_cvtsd_f64(_mm_unpackhi_pd(offset, offset)));
+    }
+    const __m128i cell = _mm_cvttpd_epi32(floored);
+    return classes_.ClassOfCell(_mm_cvtsi128_si32(cell),
+                                _mm_cvtsi128_si32(_mm_shuffle_epi32(cell, 1)));
+#else
+    return classes_.ClassAt(laser_.x + range * (c_ * d.x() - s_ * d.y()) - origin_.x(),
+                            laser_.y + range * (s_ * d.x() + c_ * d.y()) - origin_.y());
+#endif
+  }
+
+ private:
+  const QuantizedDistanceField& classes_;
+  Pose2 laser_;
+  double c_, s_;
+  Eigen::Vector2d origin_;
+#if defined(__SSE2__)
+  __m128d cs_, minus_s_c_, laser_xy_, origin_xy_, inverse_;
+#endif
+};
+
+}  // namespace
 
 LikelihoodFieldModel::LikelihoodFieldModel(const LocalizationMap& map, const AmclOptions& options)
     : map_(map),
@@ -56,7 +122,7 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
   const mapping::DistanceField& field = map_.distance_field();
   const double c = std::cos(laser.theta);
   const double s = std::sin(laser.theta);
-  const double origin_x = field.origin().x(), origin_y = field.origin().y();
+  const EndpointClasses endpoint(classes, laser, c, s, field.origin());
   const double rand_term = z_rand_ / beams.range_max;
   // In chunks: first every beam's pz (independent of each other), then the sums in beam order
   // (the same order of additions as before); one loop doing both keeps too many values live and
@@ -73,9 +139,7 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
       const double range = beams.ranges[i];
       if (range >= beams.range_max) continue;
       const Eigen::Vector2d& d = beams.directions[i];
-      const int k = classes.ClassAt(laser.x + range * (c * d.x() - s * d.y()) - origin_x,
-                                    laser.y + range * (s * d.x() + c * d.y()) - origin_y);
-      pz[count++] = hit_terms_[static_cast<std::size_t>(k)] + rand_term;
+      pz[count++] = hit_terms_[static_cast<std::size_t>(endpoint.ClassOf(range, d))] + rand_term;
     }
     for (std::size_t j = 0; j < count; ++j) {
       p += pz[j] * pz[j] * pz[j];

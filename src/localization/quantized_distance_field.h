@@ -27,16 +27,24 @@ class QuantizedDistanceField {
   int off_map() const { return static_cast<int>(distances_.size()) - 1; }
   // The number of the distance of cell (x, y), which must lie on the map.
   int At(int x, int y) const { return classes_[static_cast<std::size_t>(y) * width_ + x]; }
-  // The number of the distance at the point 'dx', 'dy' metres from the map origin: of the cell
-  // DistanceField::CellOf finds (floor of the quotient by the resolution), off_map() off it.
-  int ClassAt(double dx, double dy) const {
-    const int x = FloorOfQuotient(dx);
-    const int y = FloorOfQuotient(dy);
+  // The number of the distance of cell (x, y), off_map() off the map.
+  int ClassOfCell(int x, int y) const {
     return static_cast<unsigned>(x) < static_cast<unsigned>(width_) &&
                    static_cast<unsigned>(y) < static_cast<unsigned>(height_)
                ? At(x, y)
                : off_map();
   }
+  // The number of the distance at the point 'dx', 'dy' metres from the map origin: of the cell
+  // DistanceField::CellOf finds (floor of the quotient by the resolution), off_map() off it.
+  int ClassAt(double dx, double dy) const {
+    return ClassOfCell(FloorOfQuotient(dx), FloorOfQuotient(dy));
+  }
+  double inverse_resolution() const { return inverse_resolution_; }
+  // FloorOfQuotient trusts the product when its fraction is at least this far from a cell
+  // border (the product is within a few ulps, < 1e-9 cells, of the quotient) and its magnitude
+  // below kMaxQuotient cells.
+  static constexpr double kBorderGuard = 1e-6;
+  static constexpr double kMaxQuotient = 1e9;
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -47,11 +55,11 @@ class QuantizedDistanceField {
   // the division decides. -1 (off the map) beyond int range.
   int FloorOfQuotient(double a) const {
     const double q = a * inverse_resolution_;
-    if (!(std::abs(q) < 1e9)) return -1;
+    if (!(std::abs(q) < kMaxQuotient)) return -1;
     int i = static_cast<int>(q);
     i -= q < i ? 1 : 0;
     const double fraction = q - i;
-    if (fraction < 1e-6 || fraction > 1.0 - 1e-6) {
+    if (fraction < kBorderGuard || fraction > 1.0 - kBorderGuard) {
       return static_cast<int>(std::floor(a / resolution_));
     }
     return i;
