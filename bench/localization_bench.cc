@@ -114,6 +114,45 @@ void BM_BranchAndBoundGlobal(benchmark::State& state) {
 }
 BENCHMARK(BM_BranchAndBoundGlobal)->Unit(benchmark::kMillisecond);
 
+// Global relocalization on the MIT Killian map (250 m × 245 m, mostly unknown space around the
+// corridors), one scan a third into the log: state.range(0) = 0 searches every translation (as
+// before the free-space restriction), 1 only those within 0.25 m of free space (the default).
+void BM_BranchAndBoundGlobalKillian(benchmark::State& state) {
+  static const std::unique_ptr<Scene> killian = [] {
+    auto s = std::make_unique<Scene>();
+    const std::filesystem::path log_path =
+        std::filesystem::path(SEMCHAIN_SOURCE_DIR) /
+        "../shared/data/mit-killian/infinite-corridor-corrected.log.gz";
+    const Result<carmen::Log> log = carmen::ReadLog(log_path);
+    if (!log.ok()) return std::unique_ptr<Scene>();
+    const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, "killian");
+    if (!scans.ok()) return std::unique_ptr<Scene>();
+    s->name = "killian";
+    s->map = MapFromCorrectedPoses(*scans, 0.05, 30.0);
+    s->scan = (*scans)[scans->size() / 3];
+    return s;
+  }();
+  if (!killian) {
+    state.SkipWithError("the MIT Killian corrected log is missing");
+    return;
+  }
+  ScanMatchRelocalizerOptions options;
+  if (state.range(0) == 0) options.global_free_space_margin_meters = -1.0;
+  const ScanMatchRelocalizer relocalizer(killian->map, options);
+  RelocalizationResult result;
+  for (auto _ : state) {
+    result = relocalizer.RelocalizeGlobal(killian->scan.scan, killian->scan.LaserOffset());
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetLabel(state.range(0) == 0 ? "whole map" : "free space");
+  state.counters["nodes"] = static_cast<double>(result.nodes_scored);
+  state.counters["angles"] = result.angles;
+  state.counters["score"] = result.score;
+  state.counters["error_m"] =
+      (result.pose.translation() - killian->scan.odometry.translation()).norm();
+}
+BENCHMARK(BM_BranchAndBoundGlobalKillian)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 // Relocalization with a prior: a ±1 m, ±0.5 rad window around a pose 0.4 m / 0.2 rad off.
 void BM_BranchAndBoundWithPrior(benchmark::State& state) {
   const Scene& scene = GetScene();

@@ -100,6 +100,7 @@ class TrialRunner {
     if (streak > 0) {  // the trial ends at convergence: its error is the one there
       trial->error_m = history[*converged].second.meters;
       trial->error_deg = history[*converged].second.degrees;
+      trial->streak_start_time_s = Elapsed(start, history[*converged + 1 - streak].first);
     }
     trial->scans_to_converge = scan - start;
     trial->time_s = Elapsed(start, scan);
@@ -191,6 +192,20 @@ LogTrial RunScanMatchTrial(const std::vector<StampedScan>& scans,
   trial.updates = attempts;
   if (!trial.estimated) trial.iterations = attempts;
   return trial;
+}
+
+std::optional<double> Mean(const std::vector<double>& values) {
+  if (values.empty()) return std::nullopt;
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+std::optional<double> Median(std::vector<double> values) {
+  if (values.empty()) return std::nullopt;
+  std::sort(values.begin(), values.end());
+  const std::size_t mid = values.size() / 2;
+  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
 }  // namespace
@@ -309,10 +324,11 @@ std::vector<LogTrial> RunLogTrials(const std::vector<StampedScan>& scans,
 LogTrialSummary Summarize(const std::vector<LogTrial>& trials) {
   LogTrialSummary summary;
   summary.trials = static_cast<int>(trials.size());
-  double time_sum = 0.0, reach_sum = 0.0;
-  int timed = 0, reach_timed = 0, updates = 0;
-  std::vector<double> times;
+  double reach_sum = 0.0;
+  int reach_timed = 0, updates = 0;
+  std::vector<double> times, streak_starts;
   for (const LogTrial& t : trials) {
+    if (t.success && t.streak_start_time_s) streak_starts.push_back(*t.streak_start_time_s);
     summary.mean_cpu_ms += t.cpu_ms;
     updates += t.updates;
     summary.reached += t.reached ? 1 : 0;
@@ -328,11 +344,7 @@ LogTrialSummary Summarize(const std::vector<LogTrial>& trials) {
     summary.mean_iterations += t.iterations;
     summary.mean_error_m += t.error_m;
     summary.mean_error_deg += t.error_deg;
-    if (t.time_s) {
-      time_sum += *t.time_s;
-      times.push_back(*t.time_s);
-      ++timed;
-    }
+    if (t.time_s) times.push_back(*t.time_s);
   }
   if (updates > 0) summary.cpu_ms_per_update = summary.mean_cpu_ms / updates;
   if (summary.trials > 0) {
@@ -347,13 +359,10 @@ LogTrialSummary Summarize(const std::vector<LogTrial>& trials) {
     summary.mean_error_m /= s;
     summary.mean_error_deg /= s;
   }
-  if (timed > 0) {
-    summary.mean_time_s = time_sum / timed;
-    std::sort(times.begin(), times.end());
-    const std::size_t mid = times.size() / 2;
-    summary.median_time_s =
-        times.size() % 2 == 1 ? times[mid] : 0.5 * (times[mid - 1] + times[mid]);
-  }
+  summary.mean_time_s = Mean(times);
+  summary.median_time_s = Median(times);
+  summary.mean_streak_start_time_s = Mean(streak_starts);
+  summary.median_streak_start_time_s = Median(streak_starts);
   if (reach_timed > 0) summary.mean_reach_time_s = reach_sum / reach_timed;
   return summary;
 }

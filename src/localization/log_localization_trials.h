@@ -66,12 +66,15 @@ struct LogTrial {
   int start_scan = 0;
   bool success = false;
   std::optional<double> time_s;  // log seconds to converge (successes with usable timestamps)
-  int scans_to_converge = 0;     // scans from the start scan to convergence (successes)
-  double distance_m = 0.0;       // odometry distance driven until convergence (successes)
-  int iterations = 0;            // filter updates / match attempts until convergence or the end
-  int updates = 0;               // filter updates / match attempts run in the whole trial
-  double cpu_ms = 0.0;           // CPU time of the whole trial
-  double error_m = 0.0;          // final estimate's error
+  // nav2 rule: log seconds to the first update of the streak that made it a success (time_s is
+  // to the update completing it).
+  std::optional<double> streak_start_time_s;
+  int scans_to_converge = 0;  // scans from the start scan to convergence (successes)
+  double distance_m = 0.0;    // odometry distance driven until convergence (successes)
+  int iterations = 0;         // filter updates / match attempts until convergence or the end
+  int updates = 0;            // filter updates / match attempts run in the whole trial
+  double cpu_ms = 0.0;        // CPU time of the whole trial
+  double error_m = 0.0;       // final estimate's error
   double error_deg = 0.0;
   bool estimated = false;  // the method produced an estimate at all
   // Weaker criteria, for reading the strict one: the estimate came within the tolerances at
@@ -87,12 +90,15 @@ struct LogTrialSummary {
   double success_rate = 0.0;
   std::optional<double> mean_time_s;    // successes only
   std::optional<double> median_time_s;  // successes only
-  double mean_scans = 0.0;              // successes only
-  double mean_distance_m = 0.0;         // successes only
-  double mean_iterations = 0.0;         // successes only
-  double mean_cpu_ms = 0.0;             // all trials
-  double cpu_ms_per_update = 0.0;       // all trials: CPU over filter updates / match attempts
-  double mean_error_m = 0.0;            // successes only
+  // nav2 rule: the same to the first update of the successful streak (successes only).
+  std::optional<double> mean_streak_start_time_s;
+  std::optional<double> median_streak_start_time_s;
+  double mean_scans = 0.0;         // successes only
+  double mean_distance_m = 0.0;    // successes only
+  double mean_iterations = 0.0;    // successes only
+  double mean_cpu_ms = 0.0;        // all trials
+  double cpu_ms_per_update = 0.0;  // all trials: CPU over filter updates / match attempts
+  double mean_error_m = 0.0;       // successes only
   double mean_error_deg = 0.0;
   int reached = 0;                          // trials whose estimate was ever within tolerance
   std::optional<double> mean_reach_time_s;  // ... and how soon (those trials)

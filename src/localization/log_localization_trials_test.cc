@@ -70,6 +70,9 @@ TEST(LogTrialsTest, StreakRuleScoresAgainstTheTruthAndEndsAtConvergence) {
     ASSERT_TRUE(t.time_s.has_value());
     ASSERT_TRUE(t.reach_time_s.has_value());
     EXPECT_GT(*t.time_s, *t.reach_time_s);  // the streak completes after its first update
+    ASSERT_TRUE(t.streak_start_time_s.has_value());
+    EXPECT_GE(*t.streak_start_time_s, *t.reach_time_s);
+    EXPECT_LT(*t.streak_start_time_s, *t.time_s);
     EXPECT_LE(t.error_m, options.success_distance_meters);
   }
   const LogTrialSummary summary = Summarize(trials);

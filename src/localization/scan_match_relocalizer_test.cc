@@ -137,9 +137,9 @@ TEST_F(ScanMatchRelocalizerTest, GlobalSearchWithoutPrior) {
 // of every translation, scoring fewer nodes.
 TEST_F(ScanMatchRelocalizerTest, GlobalSearchInFreeSpaceFindsTheSamePoseWithLessWork) {
   const Eigen::Vector2d shift(0.025, 0.025);
-  mapping::MapImage map = mapping::testing::RasterizeWorld(
-      mapping::testing::RoomWorld(), Eigen::Vector2d(-10.0, -8.0) - shift,
-      Eigen::Vector2d(10.0, 8.0) - shift);
+  mapping::MapImage map = mapping::testing::RasterizeWorld(mapping::testing::RoomWorld(),
+                                                           Eigen::Vector2d(-10.0, -8.0) - shift,
+                                                           Eigen::Vector2d(10.0, 8.0) - shift);
   for (int y = 0; y < map.height; ++y) {
     for (int x = 0; x < map.width; ++x) {
       const double wx = map.origin.x() + (x + 0.5) * map.resolution;
