@@ -87,6 +87,7 @@ RelocalizationResult ScanMatchRelocalizer::Finish(
   RelocalizationResult result;
   result.points = static_cast<int>(points.size());
   result.nodes_scored = match.nodes_scored;
+  result.root_nodes = match.root_nodes;
   result.angles = match.angles;
   result.score = match.score;
   result.cpu_seconds = match.cpu_seconds;

@@ -71,6 +71,7 @@ struct RelocalizationResult {
   bool widened_angular = false;
   // Work: nodes scored in the search trees, headings searched, CPU seconds (search + refinement).
   std::int64_t nodes_scored = 0;
+  std::int64_t root_nodes = 0;  // of the last search
   int angles = 0;
   int points = 0;
   double cpu_seconds = 0.0;
