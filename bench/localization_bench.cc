@@ -138,7 +138,8 @@ void BM_BranchAndBoundGlobalKillian(benchmark::State& state) {
   }
   ScanMatchRelocalizerOptions options;
   if (state.range(0) == 0) options.global_free_space_margin_meters = -1.0;
-  if (state.range(1) > 0) options.branch_and_bound.branch_and_bound_depth = static_cast<int>(state.range(1));
+  if (state.range(1) > 0)
+    options.branch_and_bound.branch_and_bound_depth = static_cast<int>(state.range(1));
   const ScanMatchRelocalizer relocalizer(killian->map, options);
   RelocalizationResult result;
   for (auto _ : state) {
@@ -153,7 +154,10 @@ void BM_BranchAndBoundGlobalKillian(benchmark::State& state) {
   state.counters["error_m"] =
       (result.pose.translation() - killian->scan.odometry.translation()).norm();
 }
-BENCHMARK(BM_BranchAndBoundGlobalKillian)->Args({0, 0})->Args({1, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BranchAndBoundGlobalKillian)
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Unit(benchmark::kMillisecond);
 
 // Relocalization with a prior: a ±1 m, ±0.5 rad window around a pose 0.4 m / 0.2 rad off.
 void BM_BranchAndBoundWithPrior(benchmark::State& state) {
