@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "localization/likelihood_field_avx2.h"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -30,11 +32,29 @@ LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
     const double bearing = scan.BeamAngle(static_cast<std::size_t>(i));
     beams.bearings.push_back(bearing);
     beams.directions.emplace_back(std::cos(bearing), std::sin(bearing));
+    if (range < beams.range_max) {
+      ++beams.hits;
+      beams.hit_ranges.push_back(range);
+      beams.hit_x.push_back(beams.directions.back().x());
+      beams.hit_y.push_back(beams.directions.back().y());
+    }
+  }
+  while (beams.hit_ranges.size() % 4 != 0) {
+    beams.hit_ranges.push_back(0.0);
+    beams.hit_x.push_back(0.0);
+    beams.hit_y.push_back(0.0);
   }
   return beams;
 }
 
 namespace {
+
+// The beams with a return; LaserBeams built by hand (tests) may lack the hit arrays.
+int CountHits(const LaserBeams& beams) {
+  int hits = 0;
+  for (const double range : beams.ranges) hits += range < beams.range_max ? 1 : 0;
+  return hits;
+}
 
 // The distance class at the endpoint of a beam of the laser at 'laser' (cos, sin of its heading
 // given), exactly as the scalar code finds it: cell floor((laser + range R(θ) d − origin) /
@@ -122,8 +142,12 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
   const mapping::DistanceField& field = map_.distance_field();
   const double c = std::cos(laser.theta);
   const double s = std::sin(laser.theta);
-  const EndpointClasses endpoint(classes, laser, c, s, field.origin());
   const double rand_term = z_rand_ / beams.range_max;
+  if (Avx2Available() && beams.hits == CountHits(beams)) {
+    return WeightAvx2(beams, {laser.x, laser.y, c, s, field.origin().x(), field.origin().y()},
+                      rand_term, mean_beam);
+  }
+  const EndpointClasses endpoint(classes, laser, c, s, field.origin());
   // In chunks: first every beam's pz (independent of each other), then the sums in beam order
   // (the same order of additions as before); one loop doing both keeps too many values live and
   // the running sum spills to memory.
@@ -148,6 +172,26 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
     used += static_cast<int>(count);
   }
   *mean_beam = used > 0 ? sum / used : 0.0;
+  return p;
+}
+
+double LikelihoodFieldModel::WeightAvx2(const LaserBeams& beams, const LaserFrame& frame,
+                                        double rand_term, double* mean_beam) const {
+  constexpr int kChunk = 64;
+  std::array<double, kChunk> pz;
+  double p = 1.0, sum = 0.0;
+  const int n = beams.hits;
+  for (int begin = 0; begin < n; begin += kChunk) {
+    const int count = std::min(kChunk, n - begin);
+    LikelihoodPzAvx2(map_.quantized_field(), hit_terms_.data(), rand_term, frame,
+                     beams.hit_ranges.data() + begin, beams.hit_x.data() + begin,
+                     beams.hit_y.data() + begin, count, pz.data());
+    for (int j = 0; j < count; ++j) {  // beam order, as the reference code adds them
+      p += pz[j] * pz[j] * pz[j];
+      sum += pz[j];
+    }
+  }
+  *mean_beam = n > 0 ? sum / n : 0.0;
   return p;
 }
 

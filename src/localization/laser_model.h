@@ -6,6 +6,7 @@
 
 #include "core/pose2.h"
 #include "localization/amcl_options.h"
+#include "localization/likelihood_field_avx2.h"
 #include "localization/localization_map.h"
 #include "sensors/laser_scan.h"
 
@@ -25,6 +26,11 @@ struct LaserBeams {
   // (cos, sin) of each bearing, so that a particle costs one rotation per beam, not two trig
   // calls.
   std::vector<Eigen::Vector2d> directions;
+  // The beams with a return (range < range_max), in order, as separate arrays of ranges and
+  // direction components: what the likelihood field reads four at a time. 'hits' of them; the
+  // arrays are padded with zeros to a multiple of four.
+  int hits = 0;
+  std::vector<double> hit_ranges, hit_x, hit_y;
 };
 
 // Selects the beams of 'scan' for 'options' (max_beams, laser_min_range, laser_max_range);
@@ -52,6 +58,9 @@ class LikelihoodFieldModel : public LaserModel {
   double BeamLikelihood(double distance, double range_max) const;
 
  private:
+  // Weight with the AVX2 kernel over the beams' hit arrays; 'rand_term' = z_rand / range_max.
+  double WeightAvx2(const LaserBeams& beams, const LaserFrame& frame, double rand_term,
+                    double* mean_beam) const;
   // Weight on the distance field itself (maps whose distances the quantized field cannot name).
   double WeightDirect(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const;
 

@@ -27,6 +27,8 @@ class QuantizedDistanceField {
   int off_map() const { return static_cast<int>(distances_.size()) - 1; }
   // The number of the distance of cell (x, y), which must lie on the map.
   int At(int x, int y) const { return classes_[static_cast<std::size_t>(y) * width_ + x]; }
+  // The same by the row-major index y · width + x.
+  int AtIndex(int index) const { return classes_[static_cast<std::size_t>(index)]; }
   // The number of the distance of cell (x, y), off_map() off the map.
   int ClassOfCell(int x, int y) const {
     return static_cast<unsigned>(x) < static_cast<unsigned>(width_) &&
@@ -40,6 +42,7 @@ class QuantizedDistanceField {
     return ClassOfCell(FloorOfQuotient(dx), FloorOfQuotient(dy));
   }
   double inverse_resolution() const { return inverse_resolution_; }
+
   // FloorOfQuotient trusts the product when its fraction is at least this far from a cell
   // border (the product is within a few ulps, < 1e-9 cells, of the quotient) and its magnitude
   // below kMaxQuotient cells.
