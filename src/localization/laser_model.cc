@@ -49,6 +49,13 @@ LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
 
 namespace {
 
+// pose ⊕ offset. A laser at the robot's origin (the corrected logs'): the composition's products
+// with 0 add exactly nothing, so the result is the same without its cos and sin.
+Pose2 LaserPose(const Pose2& pose, const Pose2& offset) {
+  if (offset.x == 0.0 && offset.y == 0.0) return Pose2(pose.x, pose.y, pose.theta + offset.theta);
+  return pose * offset;
+}
+
 // The beams with a return; LaserBeams built by hand (tests) may lack the hit arrays.
 int CountHits(const LaserBeams& beams) {
   int hits = 0;
@@ -138,7 +145,7 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
   // with exp replaced by a table look-up and DistanceField::CellOf's floor(a / resolution) by
   // a product with the inverse: the two differ by at most an ulp, so their floors differ only
   // when the product lies within a hair of an integer, and then the division is done.
-  const Pose2 laser = pose * beams.laser_offset;
+  const Pose2 laser = LaserPose(pose, beams.laser_offset);
   const mapping::DistanceField& field = map_.distance_field();
   const double c = std::cos(laser.theta);
   const double s = std::sin(laser.theta);
