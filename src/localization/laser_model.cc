@@ -39,6 +39,7 @@ LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
       beams.hit_y.push_back(beams.directions.back().y());
     }
   }
+  beams.hit_arrays = true;
   while (beams.hit_ranges.size() % 4 != 0) {
     beams.hit_ranges.push_back(0.0);
     beams.hit_x.push_back(0.0);
@@ -54,13 +55,6 @@ namespace {
 Pose2 LaserPose(const Pose2& pose, const Pose2& offset) {
   if (offset.x == 0.0 && offset.y == 0.0) return Pose2(pose.x, pose.y, pose.theta + offset.theta);
   return pose * offset;
-}
-
-// The beams with a return; LaserBeams built by hand (tests) may lack the hit arrays.
-int CountHits(const LaserBeams& beams) {
-  int hits = 0;
-  for (const double range : beams.ranges) hits += range < beams.range_max ? 1 : 0;
-  return hits;
 }
 
 // The distance class at the endpoint of a beam of the laser at 'laser' (cos, sin of its heading
@@ -150,7 +144,7 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
   const double c = std::cos(laser.theta);
   const double s = std::sin(laser.theta);
   const double rand_term = z_rand_ / beams.range_max;
-  if (Avx2Available() && beams.hits == CountHits(beams)) {
+  if (Avx2Available() && beams.hit_arrays) {
     return WeightAvx2(beams, {laser.x, laser.y, c, s, field.origin().x(), field.origin().y()},
                       rand_term, mean_beam);
   }

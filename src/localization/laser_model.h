@@ -28,7 +28,9 @@ struct LaserBeams {
   std::vector<Eigen::Vector2d> directions;
   // The beams with a return (range < range_max), in order, as separate arrays of ranges and
   // direction components: what the likelihood field reads four at a time. 'hits' of them; the
-  // arrays are padded with zeros to a multiple of four.
+  // arrays are padded with zeros to a multiple of four. Filled by SelectBeams only
+  // ('hit_arrays' says so; without them the model reads 'ranges' and 'directions').
+  bool hit_arrays = false;
   int hits = 0;
   std::vector<double> hit_ranges, hit_x, hit_y;
 };
