@@ -1,6 +1,7 @@
 #include "localization/amcl.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -92,12 +93,25 @@ void Amcl::MotionUpdate(const Pose2& odometry) {
 void Amcl::SensorUpdate(const LaserBeams& beams) {
   // Weights are normalised before the update, so Σ wᵢ pᵢ is the weighted mean likelihood.
   double total = 0.0, beam_sum = 0.0;
-  for (Particle& p : particles_) {
-    double mean_beam = 0.0;
-    const double likelihood = laser_model_->Weight(beams, p.pose, &mean_beam);
+  const auto apply = [&](Particle& p, double likelihood, double mean_beam) {
     beam_sum += p.weight * mean_beam;
     p.weight *= likelihood;
     total += p.weight;
+  };
+  // Four particles at a time where the model is faster so; the sums in particle order as before.
+  std::size_t i = 0;
+  for (; i + 4 <= particles_.size(); i += 4) {
+    std::array<double, 4> likelihoods, mean_beams;
+    laser_model_->Weight4(beams,
+                          {&particles_[i].pose, &particles_[i + 1].pose, &particles_[i + 2].pose,
+                           &particles_[i + 3].pose},
+                          &likelihoods, &mean_beams);
+    for (std::size_t k = 0; k < 4; ++k) apply(particles_[i + k], likelihoods[k], mean_beams[k]);
+  }
+  for (; i < particles_.size(); ++i) {
+    double mean_beam = 0.0;
+    const double likelihood = laser_model_->Weight(beams, particles_[i].pose, &mean_beam);
+    apply(particles_[i], likelihood, mean_beam);
   }
   mean_beam_likelihood_ = beam_sum;
   ++counters_.updates;

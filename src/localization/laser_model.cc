@@ -176,6 +176,50 @@ double LikelihoodFieldModel::Weight(const LaserBeams& beams, const Pose2& pose,
   return p;
 }
 
+void LikelihoodFieldModel::Weight4(const LaserBeams& beams,
+                                   const std::array<const Pose2*, 4>& poses,
+                                   std::array<double, 4>* weights,
+                                   std::array<double, 4>* mean_beams) const {
+  if (!(map_.quantized_field().ok() && Avx2Available() && beams.hit_arrays)) {
+    LaserModel::Weight4(beams, poses, weights, mean_beams);
+    return;
+  }
+  const mapping::DistanceField& field = map_.distance_field();
+  std::array<LaserFrame, 4> frames;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Pose2 laser = LaserPose(*poses[i], beams.laser_offset);
+    frames[i] = {laser.x,
+                 laser.y,
+                 std::cos(laser.theta),
+                 std::sin(laser.theta),
+                 field.origin().x(),
+                 field.origin().y()};
+  }
+  const double rand_term = z_rand_ / beams.range_max;
+  constexpr int kChunk = 64;
+  std::array<std::array<double, kChunk>, 4> pz;
+  std::array<double, 4> p = {1.0, 1.0, 1.0, 1.0}, sum = {0.0, 0.0, 0.0, 0.0};
+  const int n = beams.hits;
+  for (int begin = 0; begin < n; begin += kChunk) {
+    const int count = std::min(kChunk, n - begin);
+    for (std::size_t i = 0; i < 4; ++i) {
+      LikelihoodPzAvx2(map_.quantized_field(), hit_terms_.data(), rand_term, frames[i],
+                       beams.hit_ranges.data() + begin, beams.hit_x.data() + begin,
+                       beams.hit_y.data() + begin, count, pz[i].data());
+    }
+    for (int j = 0; j < count; ++j) {  // beam order within each sum, as Weight adds them
+      for (std::size_t i = 0; i < 4; ++i) {
+        p[i] += pz[i][j] * pz[i][j] * pz[i][j];
+        sum[i] += pz[i][j];
+      }
+    }
+  }
+  for (std::size_t i = 0; i < 4; ++i) {
+    (*weights)[i] = p[i];
+    (*mean_beams)[i] = n > 0 ? sum[i] / n : 0.0;
+  }
+}
+
 double LikelihoodFieldModel::WeightAvx2(const LaserBeams& beams, const LaserFrame& frame,
                                         double rand_term, double* mean_beam) const {
   constexpr int kChunk = 64;
