@@ -1,9 +1,11 @@
 // semchain bench localize --log CORRECTED.clf --trials N --seed S --out DIR
-//     [--method amcl|scanmatch-global[,...]] [--window SECONDS]
+//     [--method amcl|scanmatch-global[,...]] [--protocol semchain|nav2] [--window SECONDS]
 // Global localization (unknown start) on a real log with corrected poses: the map is built from
 // the corrected poses, each trial starts at a random scan and runs the method over the following
-// scans with the log's odometry (DESIGN.md §6). Writes DIR/map.yaml (+ map.pgm),
-// DIR/results.json and DIR/results.md. Parameters are nav2's defaults (AmclOptions).
+// scans (DESIGN.md §6). --protocol semchain (default): the log's odometry, nav2's AMCL defaults
+// (AmclOptions), success = within tolerance to the trial's end. --protocol nav2: the peer's
+// set-up (localization::Nav2Protocol). Writes DIR/map.yaml (+ map.pgm), DIR/results.json and
+// DIR/results.md.
 #include <spdlog/spdlog.h>
 
 #include <nlohmann/json.hpp>
@@ -15,6 +17,7 @@
 #include "io/carmen.h"
 #include "localization/localization_map.h"
 #include "localization/log_localization_trials.h"
+#include "mapping/odometry_perturbation.h"
 #include "mapping/slam_pipeline.h"
 
 namespace semchain::app {
@@ -23,9 +26,10 @@ namespace {
 struct BenchLocalizeArgs {
   std::string log, out;
   std::vector<std::string> methods{"amcl"};
+  std::string protocol = "semchain";
   int trials = 20;
   int seed = 1;
-  double window_s = 120.0;
+  std::optional<double> window_s;
   std::optional<double> alpha;
 };
 
@@ -38,9 +42,11 @@ nlohmann::json TrialJson(const localization::LogTrial& t) {
           {"start_scan", t.start_scan},
           {"success", t.success},
           {"time_s", OptionalNumber(t.time_s)},
+          {"streak_start_time_s", OptionalNumber(t.streak_start_time_s)},
           {"scans", t.scans_to_converge},
           {"distance_m", t.distance_m},
           {"iterations", t.iterations},
+          {"updates", t.updates},
           {"cpu_ms", t.cpu_ms},
           {"estimated", t.estimated},
           {"error_m", t.error_m},
@@ -55,9 +61,13 @@ nlohmann::json SummaryJson(const localization::LogTrialSummary& s) {
           {"successes", s.successes},
           {"success_rate", s.success_rate},
           {"mean_time_s", OptionalNumber(s.mean_time_s)},
+          {"median_time_s", OptionalNumber(s.median_time_s)},
+          {"mean_streak_start_time_s", OptionalNumber(s.mean_streak_start_time_s)},
+          {"median_streak_start_time_s", OptionalNumber(s.median_streak_start_time_s)},
           {"mean_scans", s.mean_scans},
           {"mean_distance_m", s.mean_distance_m},
           {"mean_cpu_ms", s.mean_cpu_ms},
+          {"cpu_ms_per_update", s.cpu_ms_per_update},
           {"mean_iterations", s.mean_iterations},
           {"mean_error_m", s.mean_error_m},
           {"mean_error_deg", s.mean_error_deg},
@@ -73,25 +83,52 @@ std::string Fixed(const nlohmann::json& value, int digits) {
   return buffer;
 }
 
+std::string SuccessRule(const nlohmann::json& results) {
+  if (results["protocol"] == "nav2") {
+    return "success: the best cluster within 0.25 m and 10° of the corrected pose for 5 "
+           "consecutive filter updates (the trial ends there; time: to the update completing the "
+           "streak, streak start: to its first update; scanmatch-global: its one accepted "
+           "match)";
+  }
+  return "success: within 0.25 m and 10° of the corrected pose and staying there until the "
+         "trial ends";
+}
+
 std::string MarkdownTable(const nlohmann::json& results) {
   std::ostringstream md;
-  md << "# semchain bench localize\n\nlog: `" << results["log"].get<std::string>() << "`, "
-     << results["trials"] << " trials, seed " << results["seed"] << ", window "
-     << results["window"].get<std::string>() << ", AMCL alphas " << results["alpha"]
-     << "; success: within 0.25 m and 10° of the corrected pose and staying there until the "
-        "trial ends (reached: within them at least once; at end: within them at the end)\n\n"
-     << "| method | successes | success rate | mean time (s) | mean scans | mean distance (m) | "
-        "mean iterations | mean CPU (ms) | mean error (m) | mean error (deg) | reached | "
-        "mean time to reach (s) | at end |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "# semchain bench localize\n\nlog: `" << results["log"].get<std::string>() << "`, protocol "
+     << results["protocol"].get<std::string>() << ", " << results["trials"] << " trials, seed "
+     << results["seed"] << ", window " << results["window"].get<std::string>() << ", AMCL alphas "
+     << results["alpha"] << ", particles " << results["max_particles"] << "; "
+     << SuccessRule(results)
+     << " (reached: within them at least once; at end: within them at the end)\n\n"
+     << "| method | successes | success rate | mean time (s) | median time (s) | "
+        "mean / median streak start (s) | mean scans | "
+        "mean distance (m) | mean iterations | mean CPU (ms) | CPU per update (ms) | "
+        "mean error (m) | mean error (deg) | reached | mean time to reach (s) | at end |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [method, m] : results["methods"].items()) {
     md << "| " << method << " | " << m["successes"] << "/" << m["trials"] << " | "
        << Fixed(m["success_rate"], 2) << " | " << Fixed(m["mean_time_s"], 1) << " | "
-       << Fixed(m["mean_scans"], 0) << " | " << Fixed(m["mean_distance_m"], 1) << " | "
-       << Fixed(m["mean_iterations"], 1) << " | " << Fixed(m["mean_cpu_ms"], 0) << " | "
+       << Fixed(m["median_time_s"], 1) << " | " << Fixed(m["mean_streak_start_time_s"], 1) << " / "
+       << Fixed(m["median_streak_start_time_s"], 1) << " | " << Fixed(m["mean_scans"], 0) << " | "
+       << Fixed(m["mean_distance_m"], 1) << " | " << Fixed(m["mean_iterations"], 1) << " | "
+       << Fixed(m["mean_cpu_ms"], 0) << " | " << Fixed(m["cpu_ms_per_update"], 2) << " | "
        << Fixed(m["mean_error_m"], 3) << " | " << Fixed(m["mean_error_deg"], 2) << " | "
        << m["reached"] << " | " << Fixed(m["mean_reach_time_s"], 1) << " | " << m["final_within"]
        << " |\n";
+  }
+  // Every trial: whether it succeeded and whether the estimate was ever within tolerance.
+  for (const auto& [method, runs] : results["runs"].items()) {
+    md << "\n## " << method << ", per trial\n\n"
+       << "| trial | start scan | success | time (s) | ever within | first within (s) | "
+          "updates | CPU (ms) |\n|---|---|---|---|---|---|---|---|\n";
+    for (const nlohmann::json& t : runs) {
+      md << "| " << t["trial"] << " | " << t["start_scan"] << " | "
+         << (t["success"].get<bool>() ? "yes" : "no") << " | " << Fixed(t["time_s"], 1) << " | "
+         << (t["reached"].get<bool>() ? "yes" : "no") << " | " << Fixed(t["reach_time_s"], 1)
+         << " | " << t["updates"] << " | " << Fixed(t["cpu_ms"], 0) << " |\n";
+    }
   }
   return md.str();
 }
@@ -100,10 +137,21 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   localization::LogTrialOptions options;
   options.trials = args.trials;
   options.seed = static_cast<std::uint64_t>(args.seed);
-  options.window_seconds = args.window_s;
-  if (args.alpha) {
-    options.amcl.alpha1 = options.amcl.alpha2 = options.amcl.alpha3 = options.amcl.alpha4 =
-        *args.alpha;
+  if (args.protocol == "nav2") {
+    if (args.window_s || args.alpha) {
+      return ReportError(Status::Error(
+          "bench localize: --window and --alpha are fixed by --protocol nav2 (60 s, 0.2)"));
+    }
+    options = localization::Nav2Protocol(options);
+  } else if (args.protocol == "semchain") {
+    if (args.window_s) options.window_seconds = *args.window_s;
+    if (args.alpha) {
+      options.amcl.alpha1 = options.amcl.alpha2 = options.amcl.alpha3 = options.amcl.alpha4 =
+          *args.alpha;
+    }
+  } else {
+    return ReportError(Status::Error("bench localize: --protocol must be semchain or nav2, not '" +
+                                     args.protocol + "'"));
   }
   std::string error;
   for (const std::string& method : args.methods) {
@@ -114,6 +162,18 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   if (!log.ok()) return ReportError(log.status());
   const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, args.log);
   if (!scans.ok()) return ReportError(scans.status());
+  // nav2 protocol: the methods see odometry rebuilt from the corrected poses with seeded noise;
+  // the map and the truth stay the corrected poses.
+  std::vector<StampedScan> perturbed_scans;
+  std::vector<Pose2> truth;
+  if (options.perturb_odometry) {
+    const mapping::PerturbedLog perturbed = mapping::PerturbOdometry(*log, options.odometry_noise);
+    Result<std::vector<StampedScan>> noisy = mapping::ScansFromLog(perturbed.log, args.log);
+    if (!noisy.ok()) return ReportError(noisy.status());
+    perturbed_scans = std::move(*noisy);
+    for (const StampedScan& s : *scans) truth.push_back(s.odometry);
+  }
+  const std::vector<StampedScan>& trial_scans = options.perturb_odometry ? perturbed_scans : *scans;
   spdlog::info("bench localize: building the map from {} corrected poses", scans->size());
   const mapping::MapImage map = localization::MapFromCorrectedPoses(*scans, options.map_resolution,
                                                                     options.map_max_range_meters);
@@ -136,10 +196,12 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
       {"log", args.log},
       {"trials", args.trials},
       {"seed", args.seed},
+      {"protocol", args.protocol},
       {"timestamps_usable", timed},
       {"alpha", options.amcl.alpha1},
-      {"window",
-       timed ? Fixed(args.window_s, 0) + " s" : std::to_string(options.window_scans) + " scans"},
+      {"max_particles", options.amcl.max_particles},
+      {"window", timed ? Fixed(options.window_seconds, 0) + " s"
+                       : std::to_string(options.window_scans) + " scans"},
       {"map", {{"width", map.width}, {"height", map.height}, {"resolution", map.resolution}}},
       {"methods", nlohmann::json::object()},
       {"runs", nlohmann::json::object()}};
@@ -147,7 +209,8 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
     options.method = method;
     ProgressBar bar("bench localize " + method, static_cast<std::size_t>(args.trials));
     const std::vector<localization::LogTrial> trials = localization::RunLogTrials(
-        *scans, map, options, [&bar](int done) { bar.Update(static_cast<std::size_t>(done)); });
+        trial_scans, map, options, [&bar](int done) { bar.Update(static_cast<std::size_t>(done)); },
+        truth);
     bar.Finish();
     nlohmann::json runs = nlohmann::json::array();
     for (const localization::LogTrial& t : trials) runs.push_back(TrialJson(t));
@@ -176,7 +239,11 @@ void AddBenchLocalize(CLI::App& bench, int& exit_code) {
   command->add_option("--method", args->methods, "amcl, scanmatch-global (comma-separated)")
       ->delimiter(',')
       ->check(CLI::IsMember({"amcl", "scanmatch-global"}));
-  command->add_option("--window", args->window_s, "Log seconds per trial")
+  command->add_option("--protocol", args->protocol,
+                      "semchain (default: the log's odometry, within tolerance to the end) or "
+                      "nav2 (the peer's set-up: noisy odometry, 20000 particles, 5 updates "
+                      "within tolerance, 60 s)");
+  command->add_option("--window", args->window_s, "Log seconds per trial (semchain protocol)")
       ->check(CLI::PositiveNumber);
   command
       ->add_option("--alpha", args->alpha,

@@ -49,12 +49,14 @@ const Scene& GetScene() {
   return *scene;
 }
 
-// One filter update (motion, 60-beam likelihood field for every particle, KLD resampling,
-// clustering) of 5000 particles around the true pose.
-void BM_AmclUpdate5000Particles60Beams(benchmark::State& state) {
+// One whole filter update (motion, 60-beam likelihood field for every particle, KLD
+// resampling, clustering) of state.range(0) particles around the true pose (5000: the issue's
+// figure; 20000: nav2 protocol's max_particles).
+void BM_AmclUpdate60Beams(benchmark::State& state) {
   const Scene& scene = GetScene();
+  const int particles = static_cast<int>(state.range(0));
   AmclOptions options;
-  options.min_particles = options.max_particles = 5000;
+  options.min_particles = options.max_particles = particles;
   const LocalizationMap map(scene.map, options.laser_likelihood_max_dist);
   Amcl amcl(map, options, MakeRng(1));
   amcl.InitializePose(scene.scan.odometry, Eigen::Vector3d(0.01, 0.01, 0.003).asDiagonal());
@@ -66,10 +68,10 @@ void BM_AmclUpdate5000Particles60Beams(benchmark::State& state) {
     forward = !forward;
     benchmark::DoNotOptimize(amcl.ProcessScan(scene.scan.scan, odometry, scene.scan.LaserOffset()));
   }
-  state.SetItemsProcessed(state.iterations() * 5000);  // particle updates
+  state.SetItemsProcessed(state.iterations() * particles);  // particle updates
   state.SetLabel(scene.name);
 }
-BENCHMARK(BM_AmclUpdate5000Particles60Beams)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AmclUpdate60Beams)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
 
 // The likelihood-field weight alone, 5000 particles × 60 beams.
 void BM_LikelihoodFieldWeights5000(benchmark::State& state) {
@@ -111,6 +113,51 @@ void BM_BranchAndBoundGlobal(benchmark::State& state) {
       (result.pose.translation() - scene.scan.odometry.translation()).norm();
 }
 BENCHMARK(BM_BranchAndBoundGlobal)->Unit(benchmark::kMillisecond);
+
+// Global relocalization on the MIT Killian map (250 m × 245 m, mostly unknown space around the
+// corridors), one scan a third into the log: state.range(0) = 0 searches every translation (as
+// before the free-space restriction), 1 only those within 0.25 m of free space (the default).
+void BM_BranchAndBoundGlobalKillian(benchmark::State& state) {
+  static const std::unique_ptr<Scene> killian = [] {
+    auto s = std::make_unique<Scene>();
+    const std::filesystem::path log_path =
+        std::filesystem::path(SEMCHAIN_SOURCE_DIR) /
+        "../shared/data/mit-killian/infinite-corridor-corrected.log.gz";
+    const Result<carmen::Log> log = carmen::ReadLog(log_path);
+    if (!log.ok()) return std::unique_ptr<Scene>();
+    const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, "killian");
+    if (!scans.ok()) return std::unique_ptr<Scene>();
+    s->name = "killian";
+    s->map = MapFromCorrectedPoses(*scans, 0.05, 30.0);
+    s->scan = (*scans)[scans->size() / 3];
+    return s;
+  }();
+  if (!killian) {
+    state.SkipWithError("the MIT Killian corrected log is missing");
+    return;
+  }
+  ScanMatchRelocalizerOptions options;
+  if (state.range(0) == 0) options.global_free_space_margin_meters = -1.0;
+  if (state.range(1) > 0)
+    options.branch_and_bound.branch_and_bound_depth = static_cast<int>(state.range(1));
+  const ScanMatchRelocalizer relocalizer(killian->map, options);
+  RelocalizationResult result;
+  for (auto _ : state) {
+    result = relocalizer.RelocalizeGlobal(killian->scan.scan, killian->scan.LaserOffset());
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetLabel(state.range(0) == 0 ? "whole map" : "free space");
+  state.counters["roots"] = static_cast<double>(result.root_nodes);
+  state.counters["nodes"] = static_cast<double>(result.nodes_scored);
+  state.counters["angles"] = result.angles;
+  state.counters["score"] = result.score;
+  state.counters["error_m"] =
+      (result.pose.translation() - killian->scan.odometry.translation()).norm();
+}
+BENCHMARK(BM_BranchAndBoundGlobalKillian)
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Unit(benchmark::kMillisecond);
 
 // Relocalization with a prior: a ±1 m, ±0.5 rad window around a pose 0.4 m / 0.2 rad off.
 void BM_BranchAndBoundWithPrior(benchmark::State& state) {

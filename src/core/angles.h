@@ -9,7 +9,11 @@ inline constexpr double kPi = std::numbers::pi;
 
 // Wraps an angle into (-pi, pi].
 inline double NormalizeAngle(double angle) {
-  double a = std::fmod(angle + kPi, 2.0 * kPi);
+  // Most angles are already within one turn: fmod(a, 2π) of an a in (0, 2π) is a itself, so the
+  // result is the same without the (slow) fmod.
+  const double shifted = angle + kPi;
+  if (shifted > 0.0 && shifted < 2.0 * kPi) return shifted - kPi;
+  double a = std::fmod(shifted, 2.0 * kPi);
   if (a <= 0.0) a += 2.0 * kPi;
   return a - kPi;
 }

@@ -1,12 +1,14 @@
 #include "localization/amcl.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
 
 #include "core/angles.h"
 #include "core/check.h"
+#include "localization/weighted_index_sampler.h"
 #include "mapping/resampling.h"
 
 namespace semchain::localization {
@@ -17,6 +19,7 @@ Amcl::Amcl(const LocalizationMap& map, const AmclOptions& options, Rng rng)
       rng_(std::move(rng)),
       motion_model_({options.alpha1, options.alpha2, options.alpha3, options.alpha4}),
       laser_model_(MakeLaserModel(map, options)),
+      bins_(options.kld_bin_x, options.kld_bin_y, options.kld_bin_theta),
       detector_(options.failure_detector) {
   std::string error;
   SEMCHAIN_CHECK(options_.Validate(&error));
@@ -83,18 +86,32 @@ bool Amcl::ProcessScan(const LaserScan& scan, const Pose2& odometry, const Pose2
 
 void Amcl::MotionUpdate(const Pose2& odometry) {
   const OdometryMotion u = OdometryMotion::Between(*last_odometry_, odometry);
-  for (Particle& p : particles_) p.pose = motion_model_.Sample(p.pose, u, rng_);
+  const OdometryMotionModel::Sigmas sigmas = motion_model_.SigmasOf(u);
+  for (Particle& p : particles_) p.pose = OdometryMotionModel::Sample(p.pose, u, sigmas, rng_);
 }
 
 void Amcl::SensorUpdate(const LaserBeams& beams) {
   // Weights are normalised before the update, so Σ wᵢ pᵢ is the weighted mean likelihood.
   double total = 0.0, beam_sum = 0.0;
-  for (Particle& p : particles_) {
-    double mean_beam = 0.0;
-    const double likelihood = laser_model_->Weight(beams, p.pose, &mean_beam);
+  const auto apply = [&](Particle& p, double likelihood, double mean_beam) {
     beam_sum += p.weight * mean_beam;
     p.weight *= likelihood;
     total += p.weight;
+  };
+  // Four particles at a time where the model is faster so; the sums in particle order as before.
+  std::size_t i = 0;
+  for (; i + 4 <= particles_.size(); i += 4) {
+    std::array<double, 4> likelihoods, mean_beams;
+    laser_model_->Weight4(beams,
+                          {&particles_[i].pose, &particles_[i + 1].pose, &particles_[i + 2].pose,
+                           &particles_[i + 3].pose},
+                          &likelihoods, &mean_beams);
+    for (std::size_t k = 0; k < 4; ++k) apply(particles_[i + k], likelihoods[k], mean_beams[k]);
+  }
+  for (; i < particles_.size(); ++i) {
+    double mean_beam = 0.0;
+    const double likelihood = laser_model_->Weight(beams, particles_[i].pose, &mean_beam);
+    apply(particles_[i], likelihood, mean_beam);
   }
   mean_beam_likelihood_ = beam_sum;
   ++counters_.updates;
@@ -138,33 +155,32 @@ void Amcl::Resample() {
   ++counters_.resamplings;
   const double w_diff = w_slow_ > 0.0 ? std::max(0.0, 1.0 - w_fast_ / w_slow_) : 0.0;
   // KLD sampling (Fox 2003, Table 1): draw until the sample count exceeds the bound for the
-  // bins occupied so far (nav2 pf_update_resample).
-  std::vector<double> cumulative(weights.size());
-  std::partial_sum(weights.begin(), weights.end(), cumulative.begin());
+  // bins occupied so far (nav2 pf_update_resample). Each draw inverts the cumulative weights in
+  // expected constant time and the bound is recomputed only when a bin is added, so a
+  // resampling is linear in the particle count (nav2's walks the cumulative sum per draw).
+  const WeightedIndexSampler sampler(weights);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  PoseBins bins(options_.kld_bin_x, options_.kld_bin_y, options_.kld_bin_theta);
-  std::vector<Particle> next;
+  bins_.Clear(particles_.size());
+  std::vector<Particle>& next = next_particles_;
+  next.clear();
   next.reserve(static_cast<std::size_t>(options_.max_particles));
+  int limit = SampleLimit(0);
   while (static_cast<int>(next.size()) < options_.max_particles) {
     Pose2 pose;
     if (w_diff > 0.0 && unit(rng_) < w_diff) {
       pose = map_.RandomFreePose(rng_);
       ++counters_.random_particles;
     } else {
-      const double r = unit(rng_) * cumulative.back();
-      const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), r);
-      const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(it - cumulative.begin()),
-                                                  particles_.size() - 1);
-      pose = particles_[i].pose;
+      pose = particles_[sampler.IndexOf(unit(rng_) * sampler.total())].pose;
     }
     next.push_back({pose, 1.0});
-    bins.Insert(pose);
-    if (static_cast<int>(next.size()) > SampleLimit(bins.count())) break;
+    if (bins_.Insert(pose)) limit = SampleLimit(bins_.count());
+    if (static_cast<int>(next.size()) > limit) break;
   }
   if (w_diff > 0.0) w_slow_ = w_fast_ = 0.0;  // as nav2: restart the averages after injecting
   const double weight = 1.0 / static_cast<double>(next.size());
   for (Particle& p : next) p.weight = weight;
-  particles_ = std::move(next);
+  particles_.swap(next);  // the old set's storage is reused by the next resampling
 }
 
 void Amcl::UpdateEstimate() {

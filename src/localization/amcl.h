@@ -109,6 +109,8 @@ class Amcl {
   OdometryMotionModel motion_model_;
   std::unique_ptr<LaserModel> laser_model_;
   std::vector<Particle> particles_;
+  std::vector<Particle> next_particles_;  // resampling's output buffer, kept to reuse
+  PoseBins bins_;                         // resampling's KLD bins, kept to reuse
   std::optional<PosePrior> prior_;
   FailureDetector detector_;
   std::optional<Pose2> last_odometry_;  // at the last filter update; empty after initialisation

@@ -19,7 +19,7 @@ bool PoseBins::Insert(const Pose2& pose) {
   };
   const std::uint64_t key =
       (index(pose.x, bin_x_) << 42) | (index(pose.y, bin_y_) << 21) | index(pose.theta, bin_theta_);
-  return bins_.insert(key).second;
+  return bins_.Insert(key).second;
 }
 
 }  // namespace semchain::localization

@@ -1,9 +1,9 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_set>
 
 #include "core/pose2.h"
+#include "localization/key_index.h"
 
 // KLD sampling (Fox, "Adapting the sample size in particle filters through KLD-sampling",
 // IJRR 2003, eq. 13): the number of samples that keeps the Kullback-Leibler distance between the
@@ -23,12 +23,13 @@ class PoseBins {
       : bin_x_(bin_x), bin_y_(bin_y), bin_theta_(bin_theta) {}
   // Adds the bin of 'pose'; returns true when it was empty.
   bool Insert(const Pose2& pose);
-  int count() const { return static_cast<int>(bins_.size()); }
-  void Clear() { bins_.clear(); }
+  int count() const { return bins_.size(); }
+  // Empties the set, keeping room for 'expected' bins.
+  void Clear(std::size_t expected = 0) { bins_.Clear(expected); }
 
  private:
   double bin_x_, bin_y_, bin_theta_;
-  std::unordered_set<std::uint64_t> bins_;
+  KeyIndex bins_;
 };
 
 }  // namespace semchain::localization

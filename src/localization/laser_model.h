@@ -1,11 +1,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <vector>
 
 #include "core/pose2.h"
 #include "localization/amcl_options.h"
+#include "localization/likelihood_field_avx2.h"
 #include "localization/localization_map.h"
 #include "sensors/laser_scan.h"
 
@@ -25,6 +27,13 @@ struct LaserBeams {
   // (cos, sin) of each bearing, so that a particle costs one rotation per beam, not two trig
   // calls.
   std::vector<Eigen::Vector2d> directions;
+  // The beams with a return (range < range_max), in order, as separate arrays of ranges and
+  // direction components: what the likelihood field reads four at a time. 'hits' of them; the
+  // arrays are padded with zeros to a multiple of four. Filled by SelectBeams only
+  // ('hit_arrays' says so; without them the model reads 'ranges' and 'directions').
+  bool hit_arrays = false;
+  int hits = 0;
+  std::vector<double> hit_ranges, hit_x, hit_y;
 };
 
 // Selects the beams of 'scan' for 'options' (max_beams, laser_min_range, laser_max_range);
@@ -38,6 +47,14 @@ class LaserModel {
   // The weight factor of a robot at 'pose' for 'beams'; '*mean_beam' receives the mean pz of
   // the beams used (0 when none was).
   virtual double Weight(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const = 0;
+  // The same for four poses: weights[i] and mean_beams[i] as Weight(beams, *poses[i], ...) gives
+  // them. Models override it where four at a time is faster.
+  virtual void Weight4(const LaserBeams& beams, const std::array<const Pose2*, 4>& poses,
+                       std::array<double, 4>* weights, std::array<double, 4>* mean_beams) const {
+    for (std::size_t i = 0; i < 4; ++i) {
+      (*weights)[i] = Weight(beams, *poses[i], &(*mean_beams)[i]);
+    }
+  }
 };
 
 // nav2 likelihood_field: pz = z_hit exp(−d² / 2σ_hit²) + z_rand / range_max, d the distance from
@@ -48,12 +65,25 @@ class LikelihoodFieldModel : public LaserModel {
   // 'map' must outlive the model.
   LikelihoodFieldModel(const LocalizationMap& map, const AmclOptions& options);
   double Weight(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const override;
+  // With AVX2, the four running sums Σ pz³ interleaved: each is a chain of dependent additions
+  // (kept in beam order for the same result), and four chains keep the adder busy.
+  void Weight4(const LaserBeams& beams, const std::array<const Pose2*, 4>& poses,
+               std::array<double, 4>* weights, std::array<double, 4>* mean_beams) const override;
   // pz of one beam whose endpoint is 'distance' from the nearest obstacle.
   double BeamLikelihood(double distance, double range_max) const;
 
  private:
+  // Weight with the AVX2 kernel over the beams' hit arrays; 'rand_term' = z_rand / range_max.
+  double WeightAvx2(const LaserBeams& beams, const LaserFrame& frame, double rand_term,
+                    double* mean_beam) const;
+  // Weight on the distance field itself (maps whose distances the quantized field cannot name).
+  double WeightDirect(const LaserBeams& beams, const Pose2& pose, double* mean_beam) const;
+
   const LocalizationMap& map_;
   double z_hit_, z_rand_, factor_;
+  // z_hit exp(−d² / 2σ²) for each distinct distance of map_.quantized_field() (Prob. Rob.
+  // §6.4's precomputed likelihood field, per distance instead of per cell).
+  std::vector<double> hit_terms_;
 };
 
 // nav2 beam: the expected range z* is ray cast on the map; pz = z_hit exp(−(z − z*)² / 2σ_hit²)

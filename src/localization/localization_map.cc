@@ -10,7 +10,7 @@
 namespace semchain::localization {
 
 LocalizationMap::LocalizationMap(const mapping::MapImage& map, double likelihood_max_dist)
-    : field_(map, likelihood_max_dist) {
+    : field_(map, likelihood_max_dist), quantized_(field_) {
   states_.resize(static_cast<std::size_t>(map.width) * static_cast<std::size_t>(map.height));
   for (int y = 0; y < map.height; ++y) {
     for (int x = 0; x < map.width; ++x) {

@@ -5,6 +5,7 @@
 
 #include "core/pose2.h"
 #include "core/rng.h"
+#include "localization/quantized_distance_field.h"
 #include "mapping/distance_field.h"
 #include "mapping/map_io.h"
 
@@ -21,6 +22,8 @@ class LocalizationMap {
   LocalizationMap& operator=(const LocalizationMap&) = delete;
 
   const mapping::DistanceField& distance_field() const { return field_; }
+  // The same distances as numbers of distinct values (the likelihood field's look-up table).
+  const QuantizedDistanceField& quantized_field() const { return quantized_; }
   double resolution() const { return field_.resolution(); }
   int width() const { return field_.width(); }
   int height() const { return field_.height(); }
@@ -44,6 +47,7 @@ class LocalizationMap {
 
  private:
   mapping::DistanceField field_;
+  QuantizedDistanceField quantized_;
   std::vector<mapping::CellState> states_;
   std::vector<Eigen::Vector2i> free_cells_;
 };

@@ -40,12 +40,13 @@ double OdometryMotionModel::Rot2Sigma(const OdometryMotion& u) const {
   return std::sqrt(noise_.alpha1 * u.rot2_noise * u.rot2_noise + noise_.alpha2 * u.trans * u.trans);
 }
 
-Pose2 OdometryMotionModel::Sample(const Pose2& pose, const OdometryMotion& u, Rng& rng) const {
+Pose2 OdometryMotionModel::Sample(const Pose2& pose, const OdometryMotion& u, const Sigmas& sigmas,
+                                  Rng& rng) {
   std::normal_distribution<double> normal;
   // Table 5.6 lines 5–7: perturb each component by a sample of its variance.
-  const double rot1 = u.rot1 - Rot1Sigma(u) * normal(rng);
-  const double trans = u.trans - TransSigma(u) * normal(rng);
-  const double rot2 = u.rot2 - Rot2Sigma(u) * normal(rng);
+  const double rot1 = u.rot1 - sigmas.rot1 * normal(rng);
+  const double trans = u.trans - sigmas.trans * normal(rng);
+  const double rot2 = u.rot2 - sigmas.rot2 * normal(rng);
   return Pose2(pose.x + trans * std::cos(pose.theta + rot1),
                pose.y + trans * std::sin(pose.theta + rot1), pose.theta + rot1 + rot2);
 }

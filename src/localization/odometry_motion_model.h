@@ -36,8 +36,23 @@ class OdometryMotionModel {
  public:
   explicit OdometryMotionModel(const OdometryMotionNoise& noise) : noise_(noise) {}
 
+  // The standard deviations of the three perturbations, computed once per motion.
+  struct Sigmas {
+    double rot1 = 0.0;
+    double trans = 0.0;
+    double rot2 = 0.0;
+  };
+  Sigmas SigmasOf(const OdometryMotion& u) const {
+    return {Rot1Sigma(u), TransSigma(u), Rot2Sigma(u)};
+  }
+
   // Draws x_t ~ p(x_t | u, x_{t−1} = 'pose').
-  Pose2 Sample(const Pose2& pose, const OdometryMotion& u, Rng& rng) const;
+  Pose2 Sample(const Pose2& pose, const OdometryMotion& u, Rng& rng) const {
+    return Sample(pose, u, SigmasOf(u), rng);
+  }
+  // The same with the sigmas of 'u' given ('sigmas' = SigmasOf(u)): a filter moves every particle
+  // by the same 'u' and need not recompute three square roots per particle.
+  static Pose2 Sample(const Pose2& pose, const OdometryMotion& u, const Sigmas& sigmas, Rng& rng);
 
   // The standard deviations of the three perturbations for 'u': (δrot1, δtrans, δrot2).
   double Rot1Sigma(const OdometryMotion& u) const;

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 
 #include "core/angles.h"
 #include "core/check.h"
 #include "core/cpu_time.h"
+#include "mapping/distance_field.h"
 
 namespace semchain::localization {
 
@@ -34,6 +36,22 @@ bool ScanMatchRelocalizerOptions::Validate(std::string* error) const {
   return true;
 }
 
+namespace {
+
+// The map's free cells dilated by 'margin' metres, as a mask of the map's cells.
+std::vector<std::uint8_t> FreeSpaceMask(const mapping::MapImage& map, double margin) {
+  cv::Mat mask = mapping::MapCellMask(map, mapping::CellState::kFree);
+  const int radius = static_cast<int>(std::ceil(margin / map.resolution));
+  if (radius > 0) {
+    cv::dilate(
+        mask, mask,
+        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
+  }
+  return std::vector<std::uint8_t>(mask.begin<std::uint8_t>(), mask.end<std::uint8_t>());
+}
+
+}  // namespace
+
 ScanMatchRelocalizer::ScanMatchRelocalizer(const mapping::MapImage& map,
                                            const ScanMatchRelocalizerOptions& options)
     : options_(options),
@@ -41,6 +59,11 @@ ScanMatchRelocalizer::ScanMatchRelocalizer(const mapping::MapImage& map,
       matcher_(grid_, options.branch_and_bound) {
   std::string error;
   SEMCHAIN_CHECK(options_.Validate(&error));
+  if (options_.global_free_space_margin_meters >= 0.0) {
+    SEMCHAIN_CHECK(grid_.width == map.width && grid_.height == map.height);
+    free_space_.emplace(FreeSpaceMask(map, options_.global_free_space_margin_meters), map.width,
+                        map.height, options_.branch_and_bound.branch_and_bound_depth);
+  }
 }
 
 std::vector<Eigen::Vector2d> ScanMatchRelocalizer::MatchPoints(const LaserScan& scan,
@@ -64,6 +87,7 @@ RelocalizationResult ScanMatchRelocalizer::Finish(
   RelocalizationResult result;
   result.points = static_cast<int>(points.size());
   result.nodes_scored = match.nodes_scored;
+  result.root_nodes = match.root_nodes;
   result.angles = match.angles;
   result.score = match.score;
   result.cpu_seconds = match.cpu_seconds;
@@ -91,7 +115,8 @@ RelocalizationResult ScanMatchRelocalizer::RelocalizeGlobal(const LaserScan& sca
 
 RelocalizationResult ScanMatchRelocalizer::RelocalizeGlobal(
     const std::vector<Eigen::Vector2d>& points) const {
-  return Finish(points, matcher_.MatchFullMap(points, options_.min_score));
+  return Finish(points, matcher_.MatchFullMap(points, options_.min_score,
+                                              free_space_ ? &*free_space_ : nullptr));
 }
 
 mapping::SearchWindow ScanMatchRelocalizer::WindowOf(const PoseHypothesis& prior,

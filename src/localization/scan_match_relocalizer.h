@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "mapping/ceres_scan_matcher.h"
 #include "mapping/map_io.h"
 #include "mapping/match_grid.h"
+#include "mapping/translation_pyramid.h"
 #include "sensors/laser_scan.h"
 
 // Scan-matcher relocalization (seed 001 §2.2, Cartographer style): branch-and-bound over the
@@ -48,6 +50,11 @@ struct ScanMatchRelocalizerOptions {
   double min_linear_window_meters = 0.5;
   double max_linear_window_meters = 7.0;
   double min_angular_window_radians = 0.2;
+  // The global search (no prior) places the robot only on the map's free cells and those
+  // within this distance of one (the robot stands where its laser saw free space; the margin
+  // covers a laser mounted off the robot's centre), and drops search nodes holding none of
+  // them: on a large map most translations lie in walls or unknown space. < 0: the whole map.
+  double global_free_space_margin_meters = 0.25;
 
   bool Validate(std::string* error) const;
 };
@@ -64,6 +71,7 @@ struct RelocalizationResult {
   bool widened_angular = false;
   // Work: nodes scored in the search trees, headings searched, CPU seconds (search + refinement).
   std::int64_t nodes_scored = 0;
+  std::int64_t root_nodes = 0;  // of the last search
   int angles = 0;
   int points = 0;
   double cpu_seconds = 0.0;
@@ -126,6 +134,7 @@ class ScanMatchRelocalizer {
   ScanMatchRelocalizerOptions options_;
   mapping::MatchGrid grid_;
   mapping::BranchAndBoundMatcher matcher_;
+  std::optional<mapping::TranslationPyramid> free_space_;  // the global search's translations
 };
 
 }  // namespace semchain::localization

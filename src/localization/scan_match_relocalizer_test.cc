@@ -132,6 +132,41 @@ TEST_F(ScanMatchRelocalizerTest, GlobalSearchWithoutPrior) {
   EXPECT_EQ(result.hypothesis, -1);
 }
 
+// The room on a map four times its size, everything outside its walls and inside its two boxes
+// unknown: the global search restricted to (nearly) free space finds the same pose as the search
+// of every translation, scoring fewer nodes.
+TEST_F(ScanMatchRelocalizerTest, GlobalSearchInFreeSpaceFindsTheSamePoseWithLessWork) {
+  const Eigen::Vector2d shift(0.025, 0.025);
+  mapping::MapImage map = mapping::testing::RasterizeWorld(mapping::testing::RoomWorld(),
+                                                           Eigen::Vector2d(-10.0, -8.0) - shift,
+                                                           Eigen::Vector2d(10.0, 8.0) - shift);
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      const double wx = map.origin.x() + (x + 0.5) * map.resolution;
+      const double wy = map.origin.y() + (y + 0.5) * map.resolution;
+      const bool outside = std::abs(wx) > 5.05 || std::abs(wy) > 4.05;
+      const bool in_box = (wx > 1.05 && wx < 1.55 && wy > 1.05 && wy < 1.45) ||
+                          (wx > -2.95 && wx < -2.25 && wy > -2.45 && wy < -2.05);
+      if (outside || in_box) map.cells[static_cast<std::size_t>(y * map.width + x)] = -1;
+    }
+  }
+  ScanMatchRelocalizerOptions whole_map = Options();
+  whole_map.global_free_space_margin_meters = -1.0;
+  const ScanMatchRelocalizer restricted(map, Options());
+  const ScanMatchRelocalizer unrestricted(map, whole_map);
+  for (const Pose2& truth : {Pose2(1.9, -2.6, -0.7), Pose2(-4.2, 3.1, 2.5)}) {
+    const RelocalizationResult a = restricted.RelocalizeGlobal(Scan(truth), Pose2());
+    const RelocalizationResult b = unrestricted.RelocalizeGlobal(Scan(truth), Pose2());
+    ExpectFound(a, truth);
+    ExpectFound(b, truth);
+    EXPECT_DOUBLE_EQ(a.coarse_pose.x, b.coarse_pose.x);
+    EXPECT_DOUBLE_EQ(a.coarse_pose.y, b.coarse_pose.y);
+    EXPECT_DOUBLE_EQ(a.coarse_pose.theta, b.coarse_pose.theta);
+    EXPECT_DOUBLE_EQ(a.score, b.score);
+    EXPECT_LT(a.nodes_scored, b.nodes_scored);
+  }
+}
+
 TEST_F(ScanMatchRelocalizerTest, LaserOffsetIsApplied) {
   const Pose2 robot(0.5, 2.0, -1.0);
   const Pose2 offset(0.2, 0.05, 0.1);

@@ -110,8 +110,8 @@ BranchAndBoundMatcher::Discretization BranchAndBoundMatcher::Discretize(
 }
 
 BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vector2d>& points,
-                                                  const SearchWindow& window,
-                                                  double min_score) const {
+                                                  const SearchWindow& window, double min_score,
+                                                  const TranslationPyramid* allowed) const {
   const double start = ProcessCpuSeconds();
   BranchAndBoundResult result;
   if (points.empty()) return result;
@@ -121,6 +121,13 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
   int depth = 0;
   while (depth < stack_.max_depth() && (1 << depth) < d.max_x - d.min_x + 1) ++depth;
   const double normalizer = 255.0 * static_cast<double>(points.size());
+  // A node may hold the robot when its block of translations holds an allowed cell (levels the
+  // pyramid lacks are not checked).
+  const Eigen::Vector2i center_cell = grid_.CellOf(window.center.translation());
+  const auto may_hold_robot = [&](int dx, int dy, int height) {
+    return allowed == nullptr || height > allowed->max_depth() ||
+           allowed->Any(height, center_cell.x() + dx, center_cell.y() + dy);
+  };
   const auto score_all = [&](std::vector<Candidate>& candidates, int height) {
     const PrecomputationGrid& grid = stack_.Get(height);
     for (Candidate& c : candidates) c.sum = d.Sum(grid, c);
@@ -132,7 +139,9 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
   const int root_step = 1 << depth;
   for (int a = 0; a < static_cast<int>(d.angles.size()); ++a) {
     for (int dx = d.min_x; dx <= d.max_x; dx += root_step) {
-      for (int dy = d.min_y; dy <= d.max_y; dy += root_step) roots.push_back({a, dx, dy, 0});
+      for (int dy = d.min_y; dy <= d.max_y; dy += root_step) {
+        if (may_hold_robot(dx, dy, depth)) roots.push_back({a, dx, dy, 0});
+      }
     }
   }
   score_all(roots, depth);
@@ -157,6 +166,7 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
         if (c.dx + ox > d.max_x) break;
         for (const int oy : {0, half}) {
           if (c.dy + oy > d.max_y) break;
+          if (!may_hold_robot(c.dx + ox, c.dy + oy, height - 1)) continue;
           children.push_back({c.angle, c.dx + ox, c.dy + oy, 0});
         }
       }
@@ -177,7 +187,8 @@ BranchAndBoundResult BranchAndBoundMatcher::Match(const std::vector<Eigen::Vecto
 }
 
 BranchAndBoundResult BranchAndBoundMatcher::MatchFullMap(const std::vector<Eigen::Vector2d>& points,
-                                                         double min_score) const {
+                                                         double min_score,
+                                                         const TranslationPyramid* allowed) const {
   SearchWindow window;
   const Eigen::Vector2d center = grid_.Center();
   window.center = Pose2(center.x(), center.y(), 0.0);
@@ -185,7 +196,7 @@ BranchAndBoundResult BranchAndBoundMatcher::MatchFullMap(const std::vector<Eigen
   window.linear_window_meters =
       0.5 * std::max(grid_.width, grid_.height) * grid_.resolution + grid_.resolution;
   window.angular_window_radians = kPi;
-  return Match(points, window, min_score);
+  return Match(points, window, min_score, allowed);
 }
 
 BranchAndBoundResult BranchAndBoundMatcher::MatchExhaustive(

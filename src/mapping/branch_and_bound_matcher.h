@@ -10,6 +10,7 @@
 #include "core/pose2.h"
 #include "mapping/match_grid.h"
 #include "mapping/precomputation_grid.h"
+#include "mapping/translation_pyramid.h"
 
 // Branch-and-bound scan matching (Hess et al., "Real-Time Loop Closure in 2D LIDAR SLAM",
 // ICRA 2016, Algorithm 3; Cartographer's FastCorrelativeScanMatcher2D): the exhaustive search of
@@ -67,12 +68,13 @@ class BranchAndBoundMatcher {
   BranchAndBoundMatcher& operator=(const BranchAndBoundMatcher&) = delete;
 
   // The best pose of 'points' (returns in the robot frame, metres) within 'window' whose score
-  // is at least 'min_score'.
+  // is at least 'min_score'. With 'allowed' (cells as the match grid's), only translations on
+  // its allowed cells are searched, and nodes holding none are dropped unscored.
   BranchAndBoundResult Match(const std::vector<Eigen::Vector2d>& points, const SearchWindow& window,
-                             double min_score) const;
+                             double min_score, const TranslationPyramid* allowed = nullptr) const;
   // The same over the whole map and every heading (no prior).
-  BranchAndBoundResult MatchFullMap(const std::vector<Eigen::Vector2d>& points,
-                                    double min_score) const;
+  BranchAndBoundResult MatchFullMap(const std::vector<Eigen::Vector2d>& points, double min_score,
+                                    const TranslationPyramid* allowed = nullptr) const;
   // The exhaustive search of the same discretisation as Match (for tests and comparison).
   BranchAndBoundResult MatchExhaustive(const std::vector<Eigen::Vector2d>& points,
                                        const SearchWindow& window) const;
