@@ -1,8 +1,10 @@
 #include "sim/run_directory.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <Eigen/Geometry>
+#include <cerrno>
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -24,6 +26,30 @@ Status EncodePng(const fs::path& path, const cv::Mat& image) {
       path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
+// Removes what a killed earlier run left beside 'run_dir': its staging directory
+// (RUN.partial.PID) or the previous run it was replacing (RUN.old.PID), when no process with
+// that PID runs any more. A live process's are its own business.
+void RemoveStaleStaging(const fs::path& run_dir) {
+  std::error_code error;
+  const fs::path parent = run_dir.has_parent_path() ? run_dir.parent_path() : fs::path(".");
+  const std::string name = run_dir.filename().string();
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(parent, error)) {
+    const std::string file = entry.path().filename().string();
+    for (const std::string infix : {".partial.", ".old."}) {
+      const std::string prefix = name + infix;
+      if (file.size() <= prefix.size() || file.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string pid_text = file.substr(prefix.size());
+      if (pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9) {
+        continue;
+      }
+      const auto pid = static_cast<pid_t>(std::stol(pid_text));
+      if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) stale.push_back(entry.path());
+    }
+  }
+  for (const fs::path& path : stale) fs::remove_all(path, error);
+}
+
 }  // namespace
 
 Result<fs::path> BeginRunDirectory(const fs::path& run_dir, const std::string& marker) {
@@ -41,6 +67,7 @@ Result<fs::path> BeginRunDirectory(const fs::path& run_dir, const std::string& m
   }
   fs::path parent = run_dir.has_parent_path() ? run_dir.parent_path() : fs::path(".");
   SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(parent));
+  RemoveStaleStaging(run_dir);
   fs::path staging = run_dir;
   staging += ".partial." + std::to_string(::getpid());
   fs::remove_all(staging, error);
