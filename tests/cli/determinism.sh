@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Determinism: the same seed gives byte-identical outputs of simulate, slam (at 1 and 2 threads)
-# and semantic.
+# Determinism: the same seed gives byte-identical outputs of simulate, slam (at 1 and 2 threads),
+# semantic and bench reloc (its results without CPU readings).
 #   determinism.sh SEMCHAIN WORLD WORK_DIR
 set -euo pipefail
 semchain="$1"
@@ -35,3 +35,16 @@ same "slam 1 vs 2 threads" map_1 map_2 map.pgm map.yaml trajectory.txt
 "$semchain" semantic --run run_a --map map_1 --out map_1 >/dev/null
 "$semchain" semantic --run run_a --map map_2 --out map_2 >/dev/null
 same semantic map_1 map_2 semantic.json keyframes.json semantic.png
+
+# bench reloc: the same trials, outcomes, errors and times (CPU readings aside).
+for run in a b; do
+  "$semchain" bench reloc --world "$world" --trials 3 --seed 4 \
+    --methods semantic-amcl,semantic-scanmatch --out "reloc_$run" >/dev/null 2>&1
+  grep -v -E '"[a-z_]*cpu_ms"' "reloc_$run/results.json" >"reloc_$run.json"
+done
+if ! cmp -s reloc_a.json reloc_b.json; then
+  echo "FAIL: bench reloc: two runs with seed 4 differ beyond their CPU readings"
+  diff reloc_a.json reloc_b.json | head -20
+  exit 1
+fi
+echo "ok: bench reloc"
