@@ -6,28 +6,13 @@
 #include <vector>
 
 #include "detection/detection_drawing.h"
-#include "io/yaml_reader.h"
+#include "detection/yolo_dataset.h"
 #include "io/yolo_labels.h"
 #include "sim/world_drawing.h"
 
 namespace semchain::app {
 namespace fs = std::filesystem;
 namespace {
-
-Result<std::vector<std::string>> ClassNames(const fs::path& data_yaml) {
-  Result<yaml::Node> root = yaml::Node::LoadFile(data_yaml);
-  if (!root.ok()) return root.status();
-  Result<yaml::Node> names = root->Get("names");
-  if (!names.ok()) return names.status();
-  if (!names->IsSequence()) return names->Error("expected a list of class names");
-  std::vector<std::string> out;
-  for (std::size_t i = 0; i < names->size(); ++i) {
-    Result<std::string> name = names->At(i).AsString();
-    if (!name.ok()) return name.status();
-    out.push_back(*name);
-  }
-  return out;
-}
 
 // One frame with its label boxes drawn (BGR).
 Result<cv::Mat> LabelledFrame(const fs::path& image_path, const fs::path& label_path,
@@ -62,23 +47,16 @@ Result<cv::Mat> LabelledFrame(const fs::path& image_path, const fs::path& label_
 
 Status DrawDatasetGrid(const fs::path& dataset, const std::string& split, int count, int columns,
                        const fs::path& out) {
-  Result<std::vector<std::string>> names = ClassNames(dataset / "data.yaml");
-  if (!names.ok()) return names.status();
-  const fs::path images = dataset / "images" / split;
-  if (!fs::is_directory(images)) return Status::Error(images.string() + ": no such split");
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(images)) {
-    if (entry.path().extension() == ".png") files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  if (files.empty()) return Status::Error(images.string() + ": no images");
-  count = std::min<int>(count, static_cast<int>(files.size()));
+  Result<detection::YoloDataset> data = detection::LoadYoloDataset(dataset / "data.yaml");
+  if (!data.ok()) return data.status();
+  Result<std::vector<fs::path>> files = detection::SplitImages(*data, split);
+  if (!files.ok()) return files.status();
+  count = std::min<int>(count, static_cast<int>(files->size()));
   columns = std::max(1, std::min(columns, count));
   std::vector<cv::Mat> tiles;
   for (int i = 0; i < count; ++i) {
-    const fs::path& image = files[static_cast<std::size_t>(i) * files.size() / count];
-    const fs::path label = dataset / "labels" / split / image.filename().replace_extension(".txt");
-    Result<cv::Mat> tile = LabelledFrame(image, label, *names);
+    const fs::path& image = (*files)[static_cast<std::size_t>(i) * files->size() / count];
+    Result<cv::Mat> tile = LabelledFrame(image, detection::LabelPathOf(image), data->names);
     if (!tile.ok()) return tile.status();
     if (!tiles.empty() && tile->size() != tiles.front().size()) {
       cv::resize(*tile, *tile, tiles.front().size());

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdio>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <thread>
@@ -129,21 +130,19 @@ std::string DataYaml(const fs::path& out) {
 }
 
 std::string SummaryJson(const DatasetSummary& summary, const DatasetOptions& options) {
-  std::string json = "{\n  \"seed\": " + std::to_string(options.seed) + ",\n  \"size\": [" +
-                     std::to_string(options.width) + ", " + std::to_string(options.height) + "],\n";
+  nlohmann::ordered_json json;
+  json["seed"] = options.seed;
+  json["size"] = {options.width, options.height};
   for (const Split split : kSplits) {
     const int s = static_cast<int>(split);
-    json += std::string("  \"") + SplitName(split) +
-            "\": {\"rooms\": " + std::to_string(summary.rooms[s]) +
-            ", \"images\": " + std::to_string(summary.images[s]) + ", \"instances\": {";
+    nlohmann::ordered_json& entry = json[SplitName(split)];
+    entry["rooms"] = summary.rooms[s];
+    entry["images"] = summary.images[s];
     for (std::size_t c = 0; c < summary.instances.size(); ++c) {
-      json += (c ? ", \"" : "\"") + DefaultClassNames()[c] +
-              "\": " + std::to_string(summary.instances[c][s]);
+      entry["instances"][DefaultClassNames()[c]] = summary.instances[c][s];
     }
-    json += "}},\n";
   }
-  json.resize(json.size() - 2);
-  return json + "\n}\n";
+  return json.dump(2) + "\n";
 }
 
 }  // namespace
@@ -167,13 +166,14 @@ Status DatasetOptions::Validate() const {
 std::vector<TruthBox> TruthBoxes(const World& world, const RgbdImage& image,
                                  double min_visible_fraction, int min_box_pixels) {
   std::vector<TruthBox> boxes;
+  const std::vector<std::string>& classes =
+      world.classes.empty() ? DefaultClassNames() : world.classes;
   const std::vector<ObjectVisibility> views = MeasureVisibility(image, world);
   for (std::size_t i = 0; i < views.size(); ++i) {
     const ObjectVisibility& view = views[i];
     if (view.pixels == 0) continue;
     const int w = view.u_max - view.u_min + 1, h = view.v_max - view.v_min + 1;
     if (view.VisibleFraction() < min_visible_fraction || std::min(w, h) < min_box_pixels) continue;
-    const auto& classes = world.classes.empty() ? DefaultClassNames() : world.classes;
     const auto it = std::find(classes.begin(), classes.end(), world.objects[i].class_name);
     if (it == classes.end()) continue;
     TruthBox box;

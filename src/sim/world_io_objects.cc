@@ -10,6 +10,7 @@
 #include "core/angles.h"
 #include "io/yaml_reader.h"
 #include "sim/object_shapes.h"
+#include "sim/prism_silhouette.h"
 #include "sim/scene.h"
 #include "sim/world.h"
 #include "sim/world_io_internal.h"
@@ -47,8 +48,9 @@ Status ParseSize(const Node& node, Footprint* footprint) {
   return ReadPositive(node, "depth", &footprint->depth, true);
 }
 
-Status ParseColor(const Node& node, std::array<std::uint8_t, 3>* color) {
-  const Result<Node> value = node.Get("color");
+// node[key], an RGB colour of integers in 0..255.
+Status ParseColor(const Node& node, const std::string& key, std::array<std::uint8_t, 3>* color) {
+  const Result<Node> value = node.Get(key);
   const Result<std::vector<double>> rgb = value->AsDoubleList(3);
   if (!rgb.ok()) return rgb.status();
   for (int i = 0; i < 3; ++i) {
@@ -90,29 +92,12 @@ Status ParseShape(const Node& node, const std::string& key, ObjectShape* shape) 
   return Status::Ok();
 }
 
-Status ReadBool(const Node& node, const std::string& key, bool* value) {
-  if (!node.Has(key)) return Status::Ok();
-  const Result<bool> parsed = node.Get(key)->AsBool();
-  if (!parsed.ok()) return parsed.status();
-  *value = *parsed;
-  return Status::Ok();
-}
-
 // True when 'inner' lies within 'outer' (a small tolerance for rounding in the file).
 bool FootprintInside(const Footprint& inner, const Footprint& outer) {
   constexpr double kTolerance = 1e-6;
   Footprint grown = outer;
   grown.width += 2.0 * kTolerance, grown.depth += 2.0 * kTolerance, grown.radius += kTolerance;
-  if (inner.shape == Footprint::Shape::kBox) {
-    for (const Eigen::Vector2d& corner : BoxCorners(inner)) {
-      if (!FootprintContains(grown, corner)) return false;
-    }
-    return true;
-  }
-  for (int i = 0; i < 32; ++i) {
-    const double a = 2.0 * kPi * i / 32.0;
-    const Eigen::Vector2d p =
-        inner.center + inner.radius * Eigen::Vector2d(std::cos(a), std::sin(a));
+  for (const Eigen::Vector2d& p : FootprintOutline(inner)) {
     if (!FootprintContains(grown, p)) return false;
   }
   return true;
@@ -153,7 +138,7 @@ Status ParsePart(const Node& node, const Solid& solid, std::size_t index, Part* 
   }
   part->color = solid.color;
   part->texture = solid.texture == TextureFamily::kPattern ? TextureFamily::kPaint : solid.texture;
-  if (node.Has("color")) SEMCHAIN_RETURN_IF_ERROR(ParseColor(node, &part->color));
+  if (node.Has("color")) SEMCHAIN_RETURN_IF_ERROR(ParseColor(node, "color", &part->color));
   if (node.Has("texture")) SEMCHAIN_RETURN_IF_ERROR(ParseTexture(node, "texture", &part->texture));
   part->texture_seed = solid.texture_seed * 31u + static_cast<std::uint32_t>(index) + 1u;
   return Status::Ok();
@@ -195,7 +180,7 @@ Status ParseSolid(const Node& node, const World& world, bool semantic, Solid* so
   SEMCHAIN_RETURN_IF_ERROR(ParseSize(node, &footprint));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "height", &solid->height, true));
   SEMCHAIN_RETURN_IF_ERROR(ReadNonNegative(node, "base_height", &solid->base_height));
-  SEMCHAIN_RETURN_IF_ERROR(ReadBool(node, "plain", &solid->plain));
+  SEMCHAIN_RETURN_IF_ERROR(ReadOptional(node, "plain", &solid->plain));
   if (node.Has("texture_seed")) {
     int seed = 0;
     SEMCHAIN_RETURN_IF_ERROR(ReadNonNegativeInt(node, "texture_seed", &seed));
@@ -215,7 +200,7 @@ Status ParseSolid(const Node& node, const World& world, bool semantic, Solid* so
     solid->color = look.color;
     solid->texture = look.texture;
   }
-  if (node.Has("color")) SEMCHAIN_RETURN_IF_ERROR(ParseColor(node, &solid->color));
+  if (node.Has("color")) SEMCHAIN_RETURN_IF_ERROR(ParseColor(node, "color", &solid->color));
   if (node.Has("texture")) SEMCHAIN_RETURN_IF_ERROR(ParseTexture(node, "texture", &solid->texture));
   if (node.Has("parts")) {
     if (solid->shape != ObjectShape::kParts) {
@@ -258,13 +243,7 @@ Status ParseShell(const Node& node, ShellLookSpec* shell) {
   }
   if (node.Has("floor_color")) {
     shell->textured_floor = true;
-    const Result<Node> value = node.Get("floor_color");
-    const Result<std::vector<double>> rgb = value->AsDoubleList(3);
-    if (!rgb.ok()) return rgb.status();
-    for (int i = 0; i < 3; ++i) {
-      if ((*rgb)[i] < 0.0 || (*rgb)[i] > 255.0) return value->Error("colour components are 0..255");
-      shell->floor_color[i] = static_cast<std::uint8_t>(std::lround((*rgb)[i]));
-    }
+    SEMCHAIN_RETURN_IF_ERROR(ParseColor(node, "floor_color", &shell->floor_color));
   }
   return Status::Ok();
 }
