@@ -4,7 +4,7 @@
 // the corrected poses, each trial starts at a random scan and runs the method over the following
 // scans (DESIGN.md §6). --protocol semchain (default): the log's odometry, nav2's AMCL defaults
 // (AmclOptions), success = within tolerance to the trial's end. --protocol nav2: the peer's
-// set-up (localization::Nav2Protocol). Writes DIR/map.yaml (+ map.pgm), DIR/results.json and
+// set-up (eval::Nav2Protocol). Writes DIR/map.yaml (+ map.pgm), DIR/results.json and
 // DIR/results.md.
 #include <spdlog/spdlog.h>
 
@@ -16,7 +16,7 @@
 #include "core/progress_bar.h"
 #include "io/carmen.h"
 #include "localization/localization_map.h"
-#include "localization/log_localization_trials.h"
+#include "eval/log_localization_trials.h"
 #include "mapping/odometry_perturbation.h"
 #include "mapping/slam_pipeline.h"
 
@@ -37,7 +37,7 @@ nlohmann::json OptionalNumber(const std::optional<double>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
-nlohmann::json TrialJson(const localization::LogTrial& t) {
+nlohmann::json TrialJson(const eval::LogTrial& t) {
   return {{"trial", t.trial},
           {"start_scan", t.start_scan},
           {"success", t.success},
@@ -56,7 +56,7 @@ nlohmann::json TrialJson(const localization::LogTrial& t) {
           {"final_within", t.final_within}};
 }
 
-nlohmann::json SummaryJson(const localization::LogTrialSummary& s) {
+nlohmann::json SummaryJson(const eval::LogTrialSummary& s) {
   return {{"trials", s.trials},
           {"successes", s.successes},
           {"success_rate", s.success_rate},
@@ -134,7 +134,7 @@ std::string MarkdownTable(const nlohmann::json& results) {
 }
 
 int RunBenchLocalize(const BenchLocalizeArgs& args) {
-  localization::LogTrialOptions options;
+  eval::LogTrialOptions options;
   options.trials = args.trials;
   options.seed = static_cast<std::uint64_t>(args.seed);
   if (args.protocol == "nav2") {
@@ -142,7 +142,7 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
       return ReportError(Status::Error(
           "bench localize: --window and --alpha are fixed by --protocol nav2 (60 s, 0.2)"));
     }
-    options = localization::Nav2Protocol(options);
+    options = eval::Nav2Protocol(options);
   } else if (args.protocol == "semchain") {
     if (args.window_s) options.window_seconds = *args.window_s;
     if (args.alpha) {
@@ -175,7 +175,7 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   }
   const std::vector<StampedScan>& trial_scans = options.perturb_odometry ? perturbed_scans : *scans;
   spdlog::info("bench localize: building the map from {} corrected poses", scans->size());
-  const mapping::MapImage map = localization::MapFromCorrectedPoses(*scans, options.map_resolution,
+  const mapping::MapImage map = eval::MapFromCorrectedPoses(*scans, options.map_resolution,
                                                                     options.map_max_range_meters);
   const localization::LocalizationMap check(map, options.amcl.laser_likelihood_max_dist);
   if (check.free_cells().empty()) {
@@ -187,7 +187,7 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
 
   const Status map_written = mapping::WriteMap(out / "map.yaml", map);
   if (!map_written.ok()) return ReportError(map_written);
-  const bool timed = localization::TimestampsUsable(*scans);
+  const bool timed = eval::TimestampsUsable(*scans);
   if (!timed) {
     spdlog::warn("bench localize: {} has no usable timestamps; trials span {} scans, no times",
                  args.log, options.window_scans);
@@ -208,14 +208,14 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   for (const std::string& method : args.methods) {
     options.method = method;
     ProgressBar bar("bench localize " + method, static_cast<std::size_t>(args.trials));
-    const std::vector<localization::LogTrial> trials = localization::RunLogTrials(
+    const std::vector<eval::LogTrial> trials = eval::RunLogTrials(
         trial_scans, map, options, [&bar](int done) { bar.Update(static_cast<std::size_t>(done)); },
         truth);
     bar.Finish();
     nlohmann::json runs = nlohmann::json::array();
-    for (const localization::LogTrial& t : trials) runs.push_back(TrialJson(t));
+    for (const eval::LogTrial& t : trials) runs.push_back(TrialJson(t));
     results["runs"][method] = runs;
-    results["methods"][method] = SummaryJson(localization::Summarize(trials));
+    results["methods"][method] = SummaryJson(eval::Summarize(trials));
     spdlog::info("bench localize: {} {}", method, results["methods"][method].dump());
   }
   const Status json = WriteFileAtomically(out / "results.json", results.dump(2) + "\n");

@@ -11,6 +11,7 @@
 
 #include "apps/command.h"
 #include "apps/reloc_drawing.h"
+#include "bow/bow_occlusion.h"
 #include "core/angles.h"
 #include "core/atomic_file.h"
 #include "eval/reloc_methods.h"
@@ -21,8 +22,7 @@
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
 #include "mapping/slam_pipeline.h"
-#include "semantic/bow_occlusion.h"
-#include "semantic/semantic_map_io.h"
+#include "semantic/map_folder.h"
 
 namespace semchain::app {
 namespace {
@@ -39,38 +39,19 @@ struct LocalizeArgs {
   int seed = 1;
 };
 
-// Objects outside the map's extent mean the two files were made for different maps.
-Status CheckSemanticFitsMap(const semantic::SemanticMap& semantic, const mapping::MapImage& map,
-                            const fs::path& semantic_path, const fs::path& map_path) {
-  const Eigen::Vector2d low = map.origin.head<2>();
-  const Eigen::Vector2d high = low + map.resolution * Eigen::Vector2d(map.width, map.height);
-  for (const semantic::SemanticObject& object : semantic.objects) {
-    const Eigen::Vector2d& c = object.center;
-    if ((c.array() < low.array()).any() || (c.array() > high.array()).any()) {
-      char text[200];
-      std::snprintf(text, sizeof(text), "object %d (%s) at (%.2f, %.2f) lies outside ", object.id,
-                    object.class_name.c_str(), c.x(), c.y());
-      return Status::Error(semantic_path.string() + ": " + text + map_path.string() +
-                           ": map and semantic map do not belong together");
-    }
-  }
-  return Status::Ok();
-}
-
 Status RunLocalize(const LocalizeArgs& args) {
-  if (!eval::IsRelocMethod(args.method)) {
-    return Status::Error("--method: unknown method '" + args.method +
-                         "' (amcl, semantic-amcl, semantic-amcl-bow, semantic-scanmatch, "
-                         "scanmatch-global)");
+  const std::optional<localization::LocalizationMethod> method =
+      localization::ParseLocalizationMethod(args.method);
+  if (!method) {
+    return Status::Error("--method: unknown method '" + args.method + "' (" +
+                         localization::LocalizationMethodList() + ")");
   }
   const fs::path map_dir(args.map);
   const fs::path run(args.run);
-  Result<mapping::MapImage> map = mapping::ReadMap(map_dir / "map.yaml");
-  if (!map.ok()) return map.status();
-  Result<semantic::SemanticMap> semantic = semantic::ReadSemanticJson(map_dir / "semantic.json");
-  if (!semantic.ok()) return semantic.status();
-  SEMCHAIN_RETURN_IF_ERROR(
-      CheckSemanticFitsMap(*semantic, *map, map_dir / "semantic.json", map_dir / "map.yaml"));
+  Result<semantic::MapFolder> folder = semantic::ReadMapFolder(map_dir);
+  if (!folder.ok()) return folder.status();
+  const mapping::MapImage* map = &folder->occupancy;
+  const semantic::SemanticMap* semantic = &folder->semantic;
 
   Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
   if (!log.ok()) return log.status();
@@ -81,7 +62,7 @@ Status RunLocalize(const LocalizeArgs& args) {
   inputs.seed = static_cast<std::uint64_t>(args.seed);
   // Every update is kept: the picture chooses which to draw once it knows how many there were.
   if (!args.png.empty()) inputs.record_particles_every = 1;
-  const bool semantic_method = args.method.rfind("semantic", 0) == 0;
+  const bool semantic_method = localization::IsSemanticMethod(*method);
   if (semantic_method) {
     Result<CameraInfo> camera = ReadCameraYaml(run / "camera.yaml");
     if (!camera.ok()) return camera.status();
@@ -98,20 +79,20 @@ Status RunLocalize(const LocalizeArgs& args) {
                            args.method + " needs objects in view (use amcl or scanmatch-global)");
     }
   }
-  eval::RelocMap reloc_map(*map, *semantic, localization::AmclOptions(),
-                           semantic::PreLocalizationOptions(),
-                           localization::ScanMatchRelocalizerOptions());
-  if (args.method == "semantic-amcl-bow") {
+  localization::LocalizerMap reloc_map(*map, *semantic, localization::AmclOptions(),
+                                       localization::PreLocalizationOptions(),
+                                       localization::ScanMatchRelocalizerOptions());
+  if (*method == localization::LocalizationMethod::kSemanticAmclBow) {
     if (args.vocab.empty()) {
       return Status::Error("--method semantic-amcl-bow needs --vocab (semchain vocab train)");
     }
-    Result<semantic::KeyframeRecognizer> recognizer =
-        semantic::LoadKeyframeRecognizer(args.vocab, map_dir / "keyframes.json");
+    Result<bow::KeyframeRecognizer> recognizer =
+        bow::LoadKeyframeRecognizer(args.vocab, folder->keyframes);
     if (!recognizer.ok()) return recognizer.status();
-    reloc_map.recognizer =
-        std::make_shared<const semantic::KeyframeRecognizer>(std::move(*recognizer));
+    reloc_map.recognizer = std::make_shared<const bow::KeyframeRecognizer>(std::move(*recognizer));
   }
-  const eval::RelocTrace trace = eval::RunRelocMethod(args.method, reloc_map, inputs);
+  const eval::RelocTrace trace =
+      eval::RunRelocMethod(*method, reloc_map, localization::LocalizerOptions(), inputs);
 
   nlohmann::json result = {{"method", args.method},
                            {"scans", inputs.scans.size()},

@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "bow/bow_vocabulary_io.h"
+#include "bow/keyframe_recognizer.h"
+#include "bow/run_features.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "io/rgbd_frame_io.h"
-#include "semantic/bow_vocabulary_io.h"
-#include "semantic/keyframe_recognizer.h"
-#include "semantic/run_features.h"
 
 namespace semchain::app {
 namespace {
@@ -38,8 +38,8 @@ std::function<void(std::size_t, std::size_t)> BarFor(const std::string& label,
 struct TrainArgs {
   std::vector<std::string> runs;
   std::string out;
-  semantic::VocabularyOptions vocabulary;
-  semantic::OrbOptions orb;
+  bow::VocabularyOptions vocabulary;
+  bow::OrbOptions orb;
 };
 
 Status RunTrain(const TrainArgs& args) {
@@ -51,24 +51,24 @@ Status RunTrain(const TrainArgs& args) {
       EnsureWritableDirectory(out.has_parent_path() ? out.parent_path() : "."));
   std::vector<fs::path> images;
   for (const std::string& run : args.runs) {
-    Result<std::vector<fs::path>> frames = semantic::ListColorFrames(run);
+    Result<std::vector<fs::path>> frames = bow::ListColorFrames(run);
     if (!frames.ok()) return frames.status();
     images.insert(images.end(), frames->begin(), frames->end());
   }
   const auto start = std::chrono::steady_clock::now();
   std::optional<ProgressBar> extract_bar;
   Result<std::vector<cv::Mat>> descriptors =
-      semantic::ExtractImageDescriptors(images, args.orb, BarFor("ORB features", &extract_bar));
+      bow::ExtractImageDescriptors(images, args.orb, BarFor("ORB features", &extract_bar));
   if (!descriptors.ok()) return descriptors.status();
   if (extract_bar) extract_bar->Finish();
   std::size_t total = 0;
   for (const cv::Mat& d : *descriptors) total += static_cast<std::size_t>(d.rows);
   std::optional<ProgressBar> train_bar;
-  Result<semantic::Vocabulary> vocabulary = semantic::Vocabulary::Train(
+  Result<bow::Vocabulary> vocabulary = bow::Vocabulary::Train(
       *descriptors, args.vocabulary, BarFor("k-majority vocabulary", &train_bar));
   if (!vocabulary.ok()) return vocabulary.status();
   if (train_bar) train_bar->Finish();
-  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteVocabulary(out, *vocabulary));
+  SEMCHAIN_RETURN_IF_ERROR(bow::WriteVocabulary(out, *vocabulary));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("%zu images, %zu ORB descriptors -> %d words (k %d, L %d) in %.1f s; wrote %s\n",
@@ -88,7 +88,7 @@ struct QueryArgs {
 Status RunQuery(const QueryArgs& args) {
   if (args.top < 1) return Status::Error("--top must be at least 1");
   // The vocabulary first, so that a bad vocabulary file is the error reported.
-  Result<semantic::Vocabulary> vocabulary = semantic::ReadVocabulary(args.vocabulary);
+  Result<bow::Vocabulary> vocabulary = bow::ReadVocabulary(args.vocabulary);
   if (!vocabulary.ok()) return vocabulary.status();
   Result<semantic::KeyframeDatabase> keyframes =
       semantic::ReadKeyframes(fs::path(args.map) / "keyframes.json");
@@ -100,14 +100,14 @@ Status RunQuery(const QueryArgs& args) {
     queries.push_back(*rgb);
   }
   std::optional<ProgressBar> bar;
-  Result<semantic::KeyframeRecognizer> recognizer = semantic::KeyframeRecognizer::Build(
+  Result<bow::KeyframeRecognizer> recognizer = bow::KeyframeRecognizer::Build(
       std::move(*vocabulary), std::move(*keyframes), {}, args.run, BarFor("keyframes", &bar));
   if (!recognizer.ok()) return recognizer.status();
   if (bar) bar->Finish();
   for (std::size_t q = 0; q < queries.size(); ++q) {
     std::printf("%s\n", args.images[q].c_str());
     int rank = 0;
-    for (const semantic::KeyframeMatch& match : recognizer->QueryImage(queries[q], args.top)) {
+    for (const bow::KeyframeMatch& match : recognizer->QueryImage(queries[q], args.top)) {
       const semantic::Keyframe& keyframe = recognizer->keyframe(match.keyframe);
       std::string objects;
       for (const semantic::KeyframeObject& o : keyframe.objects) {

@@ -13,15 +13,15 @@
 #include <random>
 #include <vector>
 
+#include "bow/bow_database.h"
+#include "bow/bow_vocabulary.h"
+#include "bow/run_features.h"
 #include "core/rng.h"
 #include "io/rgbd_frame_io.h"
-#include "semantic/bow_database.h"
-#include "semantic/bow_vocabulary.h"
-#include "semantic/run_features.h"
 #include "sim/simulator.h"
 #include "sim/world_io.h"
 
-namespace semchain::semantic {
+namespace semchain::bow {
 namespace {
 
 namespace fs = std::filesystem;
@@ -138,6 +138,6 @@ void BM_OrbDescriptors(benchmark::State& state) {
 BENCHMARK(BM_OrbDescriptors)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
-}  // namespace semchain::semantic
+}  // namespace semchain::bow
 
 BENCHMARK_MAIN();

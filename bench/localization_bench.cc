@@ -9,7 +9,7 @@
 
 #include "io/carmen.h"
 #include "localization/amcl.h"
-#include "localization/log_localization_trials.h"
+#include "eval/log_localization_trials.h"
 #include "localization/scan_match_relocalizer.h"
 #include "mapping/slam_pipeline.h"
 #include "mapping/testing/synthetic_map.h"
@@ -34,7 +34,7 @@ const Scene& GetScene() {
       const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, "fr079");
       if (scans.ok()) {
         s->name = "fr079";
-        s->map = MapFromCorrectedPoses(*scans, 0.05, 30.0);
+        s->map = eval::MapFromCorrectedPoses(*scans, 0.05, 30.0);
         s->scan = (*scans)[scans->size() / 3];
         return s;
       }
@@ -128,7 +128,7 @@ void BM_BranchAndBoundGlobalKillian(benchmark::State& state) {
     const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, "killian");
     if (!scans.ok()) return std::unique_ptr<Scene>();
     s->name = "killian";
-    s->map = MapFromCorrectedPoses(*scans, 0.05, 30.0);
+    s->map = eval::MapFromCorrectedPoses(*scans, 0.05, 30.0);
     s->scan = (*scans)[scans->size() / 3];
     return s;
   }();

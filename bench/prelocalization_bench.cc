@@ -6,16 +6,16 @@
 #include <random>
 
 #include "core/rng.h"
-#include "semantic/prelocalization.h"
+#include "localization/prelocalization.h"
 
-namespace semchain::semantic {
+namespace semchain::localization {
 namespace {
 
 constexpr int kObjects = 1000;
 constexpr double kSide = 100.0;  // metres: a large building's floor
 
-SemanticObject Box(int id, const std::string& class_name, double x, double y) {
-  SemanticObject object;
+semantic::SemanticObject Box(int id, const std::string& class_name, double x, double y) {
+  semantic::SemanticObject object;
   object.id = id;
   object.class_name = class_name;
   object.center = {x, y};
@@ -28,7 +28,7 @@ void BM_PreLocalize1000Objects(benchmark::State& state) {
   const std::vector<std::string> classes = {"door", "cabinet", "bucket", "chair", "stool"};
   Rng rng = MakeRng(7, 0);
   std::uniform_real_distribution<double> where(1.0, kSide - 1.0);
-  SemanticMap map;
+  semantic::SemanticMap map;
   for (int i = 0; i < kObjects; ++i) {
     map.objects.push_back(
         Box(i, classes[static_cast<std::size_t>(i) % classes.size()], where(rng), where(rng)));
@@ -41,13 +41,13 @@ void BM_PreLocalize1000Objects(benchmark::State& state) {
   // What a robot next to object 0 sees of its three nearest objects.
   const Pose2 robot(map.objects[0].center.x() - 1.5, map.objects[0].center.y(), 0.0);
   std::vector<std::pair<double, int>> nearest;
-  for (const SemanticObject& o : map.objects) {
+  for (const semantic::SemanticObject& o : map.objects) {
     nearest.emplace_back((o.center - robot.translation()).norm(), o.id);
   }
   std::sort(nearest.begin(), nearest.end());
   std::vector<ObservedObject> observed;
   for (int k = 0; k < 3; ++k) {
-    const SemanticObject& o = map.objects[static_cast<std::size_t>(nearest[k].second)];
+    const semantic::SemanticObject& o = map.objects[static_cast<std::size_t>(nearest[k].second)];
     const Eigen::Vector2d centre = robot.Inverse() * o.center;
     ObservedObject seen;
     seen.class_name = o.class_name;
@@ -67,6 +67,6 @@ void BM_PreLocalize1000Objects(benchmark::State& state) {
 BENCHMARK(BM_PreLocalize1000Objects)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-}  // namespace semchain::semantic
+}  // namespace semchain::localization
 
 BENCHMARK_MAIN();

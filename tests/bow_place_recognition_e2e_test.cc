@@ -19,6 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "bow/bow_occlusion.h"
+#include "bow/bow_vocabulary_io.h"
+#include "bow/keyframe_recognizer.h"
+#include "bow/run_features.h"
 #include "core/angles.h"
 #include "io/carmen.h"
 #include "io/detections_io.h"
@@ -26,10 +30,6 @@
 #include "io/trajectory_io.h"
 #include "io/trajectory_lookup.h"
 #include "mapping/slam_pipeline.h"
-#include "semantic/bow_occlusion.h"
-#include "semantic/bow_vocabulary_io.h"
-#include "semantic/keyframe_recognizer.h"
-#include "semantic/run_features.h"
 #include "semantic/semantic_run.h"
 #include "sim/simulator.h"
 #include "sim/world_io.h"
@@ -76,7 +76,7 @@ RunFrames LoadRunFrames(const fs::path& run) {
     images.push_back(ColorImagePath(run, frame.frame));
   }
   Result<std::vector<cv::Mat>> descriptors =
-      semantic::ExtractImageDescriptors(images, semantic::OrbOptions());
+      bow::ExtractImageDescriptors(images, bow::OrbOptions());
   SEMCHAIN_CHECK(descriptors.ok());
   out.frames = std::move(*frames);
   out.descriptors = std::move(*descriptors);
@@ -99,12 +99,12 @@ class BowEndToEndTest : public ::testing::Test {
     options.show_progress = false;
     SimulateRun(LoadBundledWorld("two_similar_rooms"), options, *root_ / "mapping");
     mapping_ = new RunFrames(LoadRunFrames(*root_ / "mapping"));
-    semantic::VocabularyOptions vocabulary_options;
+    bow::VocabularyOptions vocabulary_options;
     vocabulary_options.seed = 1;
-    Result<semantic::Vocabulary> vocabulary =
-        semantic::Vocabulary::Train(mapping_->descriptors, vocabulary_options);
+    Result<bow::Vocabulary> vocabulary =
+        bow::Vocabulary::Train(mapping_->descriptors, vocabulary_options);
     SEMCHAIN_CHECK(vocabulary.ok());
-    vocabulary_ = new semantic::Vocabulary(*vocabulary);
+    vocabulary_ = new bow::Vocabulary(*vocabulary);
   }
   static void TearDownTestSuite() {
     fs::remove_all(*root_);
@@ -115,12 +115,12 @@ class BowEndToEndTest : public ::testing::Test {
 
   static fs::path* root_;
   static RunFrames* mapping_;
-  static semantic::Vocabulary* vocabulary_;
+  static bow::Vocabulary* vocabulary_;
 };
 
 fs::path* BowEndToEndTest::root_ = nullptr;
 RunFrames* BowEndToEndTest::mapping_ = nullptr;
-semantic::Vocabulary* BowEndToEndTest::vocabulary_ = nullptr;
+bow::Vocabulary* BowEndToEndTest::vocabulary_ = nullptr;
 
 TEST_F(BowEndToEndTest, SecondPassPrecisionAndRecall) {
   const sim::World world = LoadBundledWorld("two_similar_rooms");
@@ -144,8 +144,8 @@ TEST_F(BowEndToEndTest, SecondPassPrecisionAndRecall) {
     keyframe.pose = mapping_->truth[i];
     keyframes.keyframes.push_back(keyframe);
   }
-  const semantic::KeyframeRecognizer recognizer = semantic::KeyframeRecognizer::FromDescriptors(
-      *vocabulary_, keyframes, mapping_->descriptors, {});
+  const bow::KeyframeRecognizer recognizer =
+      bow::KeyframeRecognizer::FromDescriptors(*vocabulary_, keyframes, mapping_->descriptors, {});
 
   struct Retrieval {
     double score;
@@ -198,7 +198,7 @@ TEST_F(BowEndToEndTest, SecondPassPrecisionAndRecall) {
 TEST_F(BowEndToEndTest, LoadedRecognizerFindsTheFrameItself) {
   const fs::path vocabulary = *root_ / "vocab.bin";
   const fs::path keyframes_json = *root_ / "keyframes.json";
-  ASSERT_TRUE(semantic::WriteVocabulary(vocabulary, *vocabulary_).ok());
+  ASSERT_TRUE(bow::WriteVocabulary(vocabulary, *vocabulary_).ok());
   semantic::KeyframeDatabase keyframes;
   keyframes.run = (*root_ / "mapping").string();
   for (std::size_t i = 0; i < 40; ++i) {
@@ -208,8 +208,8 @@ TEST_F(BowEndToEndTest, LoadedRecognizerFindsTheFrameItself) {
     keyframes.keyframes.push_back(keyframe);
   }
   ASSERT_TRUE(semantic::WriteKeyframes(keyframes_json, keyframes).ok());
-  const Result<semantic::KeyframeRecognizer> recognizer =
-      semantic::LoadKeyframeRecognizer(vocabulary, keyframes_json);
+  const Result<bow::KeyframeRecognizer> recognizer =
+      bow::LoadKeyframeRecognizer(vocabulary, keyframes_json);
   ASSERT_TRUE(recognizer.ok()) << recognizer.status().message();
   ASSERT_EQ(recognizer->database().size(), 40);
   for (int k : {0, 13, 39}) {
@@ -218,8 +218,8 @@ TEST_F(BowEndToEndTest, LoadedRecognizerFindsTheFrameItself) {
     EXPECT_EQ(best[0].keyframe, k);
     EXPECT_NEAR(best[0].score, 1.0, 1e-9);
   }
-  const Result<semantic::KeyframeRecognizer> missing =
-      semantic::LoadKeyframeRecognizer(vocabulary, *root_ / "none.json");
+  const Result<bow::KeyframeRecognizer> missing =
+      bow::LoadKeyframeRecognizer(vocabulary, *root_ / "none.json");
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.status().message().find("none.json"), std::string::npos);
 }
@@ -287,8 +287,8 @@ TEST_F(BowEndToEndTest, OccludedBucketInTheChangedWorld) {
     descriptors.push_back(mapping_->descriptors[it - mapping_->frames.begin()]);
     keyframes.keyframes.push_back(keyframe);
   }
-  const semantic::KeyframeRecognizer recognizer =
-      semantic::KeyframeRecognizer::FromDescriptors(*vocabulary_, keyframes, descriptors, {});
+  const bow::KeyframeRecognizer recognizer =
+      bow::KeyframeRecognizer::FromDescriptors(*vocabulary_, keyframes, descriptors, {});
 
   // Runs in the changed world: its mapping route and 12 trials (a full turn in place, then a
   // short drive) from seeded random poses inside room A's mapping loop. Scored: frames in room A
@@ -324,12 +324,12 @@ TEST_F(BowEndToEndTest, OccludedBucketInTheChangedWorld) {
         continue;
       }
       ++frames;
-      semantic::OcclusionQueryOptions occlusion;
+      bow::OcclusionQueryOptions occlusion;
       occlusion.candidates = kRanked;
-      const semantic::OcclusionQuery query = semantic::QueryOccludedObjects(
+      const bow::OcclusionQuery query = bow::QueryOccludedObjects(
           recognizer, map, live.descriptors[q], frame.detections, occlusion);
       if (query.inference.used < 0) continue;
-      const semantic::OcclusionInference& inference = query.inference.inference;
+      const bow::OcclusionInference& inference = query.inference.inference;
       const bool names_bucket = std::any_of(inference.occluded.begin(), inference.occluded.end(),
                                             [](const auto& o) { return o.class_name == "bucket"; });
       const bool right_node =

@@ -125,15 +125,19 @@ TEST(RelocMethodsTest, ParticleSnapshotsChangeNothingAndShrink) {
   ASSERT_TRUE(trial.ok()) << trial.status().message();
   const TruthMaps maps = MapsFromTruth(*world);
   ASSERT_FALSE(maps.semantic.chains.empty());
-  const eval::RelocMap map(maps.occupancy, maps.semantic, localization::AmclOptions(),
-                           semantic::PreLocalizationOptions(),
-                           localization::ScanMatchRelocalizerOptions());
+  const localization::LocalizerMap map(maps.occupancy, maps.semantic, localization::AmclOptions(),
+                                       localization::PreLocalizationOptions(),
+                                       localization::ScanMatchRelocalizerOptions());
 
   eval::RelocRunInputs inputs = trial->inputs;
-  const eval::RelocTrace plain = eval::RunRelocMethod("semantic-amcl", map, inputs);
+  const eval::RelocTrace plain =
+      eval::RunRelocMethod(localization::LocalizationMethod::kSemanticAmcl, map,
+                           localization::LocalizerOptions(), inputs);
   inputs.record_particles_every = 4;
   inputs.record_particles_max = 500;
-  const eval::RelocTrace recorded = eval::RunRelocMethod("semantic-amcl", map, inputs);
+  const eval::RelocTrace recorded =
+      eval::RunRelocMethod(localization::LocalizationMethod::kSemanticAmcl, map,
+                           localization::LocalizerOptions(), inputs);
 
   EXPECT_TRUE(plain.particle_snapshots.empty());
   ASSERT_EQ(plain.estimates.size(), recorded.estimates.size());

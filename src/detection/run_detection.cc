@@ -25,6 +25,8 @@ Result<std::map<std::string, double>> RecordedStamps(const fs::path& run_dir) {
   return stamps;
 }
 
+}  // namespace
+
 void MeasureDepths(const cv::Mat& depth_m, const RunDetectionOptions& options,
                    std::vector<Detection>& detections) {
   std::vector<Detection> kept;
@@ -36,8 +38,6 @@ void MeasureDepths(const cv::Mat& depth_m, const RunDetectionOptions& options,
   }
   detections = std::move(kept);
 }
-
-}  // namespace
 
 bool IsRunDirectory(const fs::path& dir) {
   std::error_code ec;

@@ -8,6 +8,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "bow/bow_vocabulary.h"
+#include "bow/keyframe_recognizer.h"
+#include "bow/orb_features.h"
+#include "bow/run_features.h"
 #include "core/angles.h"
 #include "core/rng.h"
 #include "eval/ate.h"
@@ -18,10 +22,6 @@
 #include "io/rgbd_frame_io.h"
 #include "io/trajectory_io.h"
 #include "mapping/slam_pipeline.h"
-#include "semantic/bow_vocabulary.h"
-#include "semantic/keyframe_recognizer.h"
-#include "semantic/orb_features.h"
-#include "semantic/run_features.h"
 #include "semantic/semantic_run.h"
 #include "sim/scene.h"
 #include "sim/simulator.h"
@@ -47,24 +47,24 @@ struct BuiltMap {
 
 // The bag of words of the mapping run (seed 000 §3.1 steps 1–2): a vocabulary trained on its
 // frames and its keyframes described with it.
-Result<std::shared_ptr<const semantic::KeyframeRecognizer>> BuildRecognizer(const BuiltMap& built,
-                                                                            const fs::path& run,
-                                                                            std::uint64_t seed) {
-  Result<std::vector<fs::path>> images = semantic::ListColorFrames(run);
+Result<std::shared_ptr<const bow::KeyframeRecognizer>> BuildRecognizer(const BuiltMap& built,
+                                                                       const fs::path& run,
+                                                                       std::uint64_t seed) {
+  Result<std::vector<fs::path>> images = bow::ListColorFrames(run);
   if (!images.ok()) return images.status();
   Result<std::vector<cv::Mat>> descriptors =
-      semantic::ExtractImageDescriptors(*images, semantic::OrbOptions());
+      bow::ExtractImageDescriptors(*images, bow::OrbOptions());
   if (!descriptors.ok()) return descriptors.status();
-  semantic::VocabularyOptions options;
+  bow::VocabularyOptions options;
   options.seed = seed;
-  Result<semantic::Vocabulary> vocabulary = semantic::Vocabulary::Train(*descriptors, options);
+  Result<bow::Vocabulary> vocabulary = bow::Vocabulary::Train(*descriptors, options);
   if (!vocabulary.ok()) return vocabulary.status();
   semantic::KeyframeDatabase database{run.string(), built.keyframes};
-  Result<semantic::KeyframeRecognizer> recognizer = semantic::KeyframeRecognizer::Build(
-      std::move(*vocabulary), std::move(database), semantic::KeyframeRecognizerOptions(), run);
+  Result<bow::KeyframeRecognizer> recognizer = bow::KeyframeRecognizer::Build(
+      std::move(*vocabulary), std::move(database), bow::KeyframeRecognizerOptions(), run);
   if (!recognizer.ok()) return recognizer.status();
-  return std::shared_ptr<const semantic::KeyframeRecognizer>(
-      std::make_shared<semantic::KeyframeRecognizer>(std::move(*recognizer)));
+  return std::shared_ptr<const bow::KeyframeRecognizer>(
+      std::make_shared<bow::KeyframeRecognizer>(std::move(*recognizer)));
 }
 
 Result<BuiltMap> BuildMap(const sim::World& world, std::uint64_t seed, const fs::path& run) {
@@ -296,10 +296,9 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
                                                const std::function<void(int, int)>& progress) {
   if (options.trials < 1) return Status::Error("--trials must be at least 1");
   for (const std::string& method : options.methods) {
-    if (!IsRelocMethod(method)) {
-      return Status::Error("--methods: unknown method '" + method +
-                           "' (amcl, semantic-amcl, semantic-amcl-bow, semantic-scanmatch, "
-                           "scanmatch-global)");
+    if (!localization::ParseLocalizationMethod(method)) {
+      return Status::Error("--methods: unknown method '" + method + "' (" +
+                           localization::LocalizationMethodList() + ")");
     }
   }
   Result<sim::World> world = sim::LoadWorld(world_path);
@@ -341,9 +340,9 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   amcl.alpha2 = std::max(kMinAlpha, kAlphaMargin * noise[1]);
   amcl.alpha3 = std::max(kMinAlpha, kAlphaMargin * noise[2]);
   amcl.alpha4 = std::max(kMinAlpha, kAlphaMargin * noise[3]);
-  RelocMap map(built->occupancy, built->semantic, amcl, semantic::PreLocalizationOptions(),
-               localization::ScanMatchRelocalizerOptions());
-  map.method = options.method;
+  localization::LocalizerMap map(built->occupancy, built->semantic, amcl,
+                                 localization::PreLocalizationOptions(),
+                                 localization::ScanMatchRelocalizerOptions());
   if (std::find(options.methods.begin(), options.methods.end(), "semantic-amcl-bow") !=
       options.methods.end()) {
     auto recognizer = BuildRecognizer(*built, work / "mapping", options.seed);
@@ -365,7 +364,8 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
                            options.seed + kTrialRunSeedOffset + k, options, run);
     if (!trial.ok()) return trial.status();
     for (const std::string& method : options.methods) {
-      const RelocTrace trace = RunRelocMethod(method, map, trial->inputs);
+      const RelocTrace trace = RunRelocMethod(*localization::ParseLocalizationMethod(method), map,
+                                              options.method, trial->inputs);
       const TrialOutcome outcome = Score(trace, *trial, options);
       Accumulate(outcome, &result.methods[method]);
       const Pose2& start = (*starts)[static_cast<std::size_t>(k)];
@@ -463,16 +463,17 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
     char search_cpu[32];
     std::snprintf(search_cpu, sizeof(search_cpu), "%.2f", s.mean_search_cpu_ms);
     char line[400];
-    std::snprintf(line, sizeof(line),
-                  "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %s | %.1f | %.3f | %.2f | %s |\n",
-                  name.c_str(), s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s,
-                  s.mean_cpu_ms, IsScanMatcherMethod(name) ? search_cpu : "–", s.mean_iterations,
-                  s.mean_error_m, s.mean_error_deg,
-                  s.prelocalized > 0
-                      ? (std::to_string(s.prelocalization_error_x_m).substr(0, 5) + " / " +
-                         std::to_string(s.prelocalization_error_y_m).substr(0, 5))
-                            .c_str()
-                      : "–");
+    std::snprintf(
+        line, sizeof(line),
+        "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %s | %.1f | %.3f | %.2f | %s |\n", name.c_str(),
+        s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s, s.mean_cpu_ms,
+        localization::IsScanMatcherMethod(*localization::ParseLocalizationMethod(name)) ? search_cpu
+                                                                                        : "–",
+        s.mean_iterations, s.mean_error_m, s.mean_error_deg,
+        s.prelocalized > 0 ? (std::to_string(s.prelocalization_error_x_m).substr(0, 5) + " / " +
+                              std::to_string(s.prelocalization_error_y_m).substr(0, 5))
+                                 .c_str()
+                           : "–");
     text += line;
   }
   return text;

@@ -35,7 +35,7 @@ struct RelocBenchmarkOptions {
   double trial_turns = 2.0;
   double trial_forward = 1.0;
   // How the semantic methods use the camera (observation memory, single-object hypotheses).
-  RelocMethodOptions method;
+  localization::LocalizerOptions method;
   // Where the runs are made (removed afterwards); a temporary directory when empty.
   std::filesystem::path work_dir;
 };

@@ -7,76 +7,15 @@
 #include <vector>
 
 #include "core/pose2.h"
-#include "core/rng.h"
-#include "localization/amcl.h"
-#include "localization/localization_map.h"
-#include "localization/scan_match_relocalizer.h"
-#include "mapping/map_io.h"
-#include "semantic/keyframe_recognizer.h"
-#include "semantic/observation_memory.h"
-#include "semantic/prelocalization.h"
-#include "semantic/semantic_map.h"
+#include "localization/localizer.h"
 #include "sensors/camera.h"
 #include "sensors/detection.h"
 #include "sensors/laser_scan.h"
 
-// The relocalization methods of DESIGN.md §4, run over what a robot records while it turns in
-// place and moves off: its scans with odometry and its camera's detections.
-//   amcl                AMCL initialised globally (laser only, nav2 defaults)
-//   semantic-amcl       chain pre-localization (seed 000 §3.1) seeds AMCL with Gaussians around
-//                       the hypotheses and weights its particles by the prior (seed 000 §3.2);
-//                       laser-only AMCL until a frame shows two objects; every later such frame
-//                       renews the prior (moved on by odometry in between), and re-seeds the
-//                       particles when the filter reports a collapse
-//   semantic-amcl-bow   semantic-amcl; when a frame's objects give no hypothesis, the bag of words
-//                       finds the most similar keyframe, names the object hidden now and
-//                       pre-localizes from its two chain neighbours (seed 000 §3.1 steps 3–4)
-//   semantic-scanmatch  the hypotheses bound the window of branch-and-bound + Ceres (seed 001);
-//                       after a full turn without two objects in view, windows around
-//                       single-object hypotheses, then the whole map
-//   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
-// The semantic methods pre-localize from every object seen during the last turn (see
-// semantic::ObservationMemory). After a scan matcher has found the robot, AMCL tracks it.
+// The relocalization methods of DESIGN.md §4 (localization::Localizer) run over what a robot
+// records while it turns in place and moves off: its scans with odometry and its camera's
+// detections; the trace is what the benchmark scores.
 namespace semchain::eval {
-
-const std::vector<std::string>& RelocMethodNames();
-bool IsRelocMethod(const std::string& name);
-// semantic-scanmatch and scanmatch-global: a scan matcher finds the robot, AMCL then tracks.
-bool IsScanMatcherMethod(const std::string& name);
-
-// How the semantic methods use what the camera saw.
-struct RelocMethodOptions {
-  // Pre-localize from every object seen during the turn (carried by odometry into the current
-  // frame), not only from the current frame's.
-  bool observation_memory = true;
-  semantic::ObservationMemoryOptions memory;
-  // semantic-scanmatch: after a full turn without two objects forming a mapped pair, search
-  // windows around single-object hypotheses (circles around the mapped objects of a seen class)
-  // before the whole map.
-  bool single_object = true;
-  // semantic-scanmatch: while tracking, every frame's pre-localization checks the lock; a pose
-  // that explains more of the objects seen than the tracked one is searched beside it, and the
-  // scan matcher's better match is kept (a look-alike pair can lock the robot in the wrong place).
-  bool recheck_lock = true;
-};
-
-// Everything a method may use about the environment, built once per map.
-struct RelocMap {
-  RelocMap(const mapping::MapImage& occupancy, const semantic::SemanticMap& semantic,
-           const localization::AmclOptions& amcl,
-           const semantic::PreLocalizationOptions& prelocalization,
-           const localization::ScanMatchRelocalizerOptions& scan_match);
-
-  mapping::MapImage occupancy;
-  semantic::SemanticMap semantic;
-  localization::AmclOptions amcl_options;
-  localization::LocalizationMap localization;
-  semantic::PreLocalizer prelocalizer;
-  localization::ScanMatchRelocalizer matcher;
-  RelocMethodOptions method;
-  // The keyframes of the mapping run with their vocabulary (semantic-amcl-bow); may be null.
-  std::shared_ptr<const semantic::KeyframeRecognizer> recognizer;
-};
 
 // One camera frame of a run, taken at the time of a scan.
 struct RelocFrame {
@@ -128,8 +67,10 @@ struct RelocRunInputs {
 };
 
 // Runs 'method' over the scans (frames are used at the scan with the same stamp or the first
-// after it).
-RelocTrace RunRelocMethod(const std::string& method, const RelocMap& map,
+// after it), its filter seeded with inputs.seed (options.seed is not used).
+RelocTrace RunRelocMethod(localization::LocalizationMethod method,
+                          const localization::LocalizerMap& map,
+                          const localization::LocalizerOptions& options,
                           const RelocRunInputs& inputs);
 
 }  // namespace semchain::eval

@@ -24,6 +24,12 @@ Status WriteDetectionsJsonl(const std::filesystem::path& path,
 // Checks: score in [0, 1], x1 <= x2 and y1 <= y2, depth_m >= 0, all numbers finite.
 Result<std::vector<FrameDetections>> ReadDetectionsJsonl(const std::filesystem::path& path);
 
+// One record of detections.jsonl (one line, no newline), as the ROS topic /semchain/detections
+// carries it; an error for non-finite numbers.
+Result<std::string> FormatDetectionsRecord(const FrameDetections& frame);
+// Parses one record; 'where' starts its error messages ("/semchain/detections: stamp: missing").
+Result<FrameDetections> ParseDetectionsRecord(const std::string& record, const std::string& where);
+
 // Reads class names, one per line with surrounding white space trimmed; blank lines at the end
 // are ignored, a blank line before a name (it would shift the ids) or a repeated name is an error.
 Result<std::vector<std::string>> ReadClassNames(const std::filesystem::path& path);

@@ -129,5 +129,24 @@ TEST(DetectionsIoTest, ReadsClassNames) {
   EXPECT_EQ(ErrorOf(ReadClassNames(empty)), empty.string() + ": no class names");
 }
 
+TEST(DetectionsIoTest, OneRecordRoundTripsAndNamesItsSource) {
+  const FrameDetections frame = TwoFrames().front();
+  const Result<std::string> record = FormatDetectionsRecord(frame);
+  ASSERT_TRUE(record.ok()) << record.status().message();
+  EXPECT_EQ(record->find('\n'), std::string::npos);
+  const Result<FrameDetections> parsed = ParseDetectionsRecord(*record, "/semchain/detections");
+  ASSERT_TRUE(parsed.ok()) << parsed.status().message();
+  EXPECT_EQ(parsed->frame, frame.frame);
+  EXPECT_EQ(parsed->stamp, frame.stamp);
+  ASSERT_EQ(parsed->detections.size(), 2u);
+  EXPECT_EQ(parsed->detections[1].score, 1.0 / 3.0);
+  EXPECT_EQ(parsed->detections[1].depth_m, 0.1 + 0.2);
+  EXPECT_EQ(ErrorOf(ParseDetectionsRecord(R"({"frame": "f", "detections": []})", "/topic")),
+            "/topic: stamp: missing");
+  FrameDetections broken = frame;
+  broken.detections[0].depth_m = std::nan("");
+  EXPECT_FALSE(FormatDetectionsRecord(broken).ok());
+}
+
 }  // namespace
 }  // namespace semchain

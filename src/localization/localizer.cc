@@ -1,0 +1,463 @@
+#include "localization/localizer.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "bow/bow_occlusion.h"
+#include "bow/orb_features.h"
+#include "core/angles.h"
+#include "core/cpu_time.h"
+#include "core/rng.h"
+#include "io/rgbd_frame_io.h"
+
+namespace semchain::localization {
+namespace {
+
+std::vector<PoseHypothesis> ToHypotheses(const std::vector<PoseCandidate>& candidates) {
+  std::vector<PoseHypothesis> hypotheses;
+  for (const PoseCandidate& c : candidates) {
+    // More objects in agreement, more weight; the laser fit separates look-alikes.
+    hypotheses.push_back({c.pose, c.covariance, c.agreeing * (0.1 + c.laser_score)});
+  }
+  return hypotheses;
+}
+
+// The covariance of a renewed prior, relative to the pre-localization's.
+constexpr double kRenewedPriorScale = 4.0;
+
+// Poses this far apart are different places, not a correction the filter makes by itself
+// (twice the benchmark's success tolerance).
+bool AnotherPlace(const Pose2& a, const Pose2& b) {
+  return (a.translation() - b.translation()).norm() > 0.5 ||
+         std::abs(NormalizeAngle(a.theta - b.theta)) > 0.35;
+}
+
+// Tracking covariance after a scan matcher found the robot.
+const Eigen::Matrix3d kTrackingCovariance =
+    Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal();
+
+// An initial pose's covariance as the filter can sample it: RViz and scripts send zeros or
+// tiny values; a floor of 1 cm and 0.6° keeps the Gaussian proper.
+Eigen::Matrix3d SampleableCovariance(const Eigen::Matrix3d& covariance) {
+  const Eigen::Matrix3d symmetric = 0.5 * (covariance + covariance.transpose());
+  const Eigen::Vector3d floor(1e-4, 1e-4, 1e-4);
+  if (symmetric.allFinite() && (symmetric.diagonal().array() >= floor.array()).all() &&
+      symmetric.llt().info() == Eigen::Success) {
+    return symmetric;
+  }
+  Eigen::Vector3d diagonal = symmetric.diagonal();
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(diagonal[i]) || diagonal[i] < floor[i]) diagonal[i] = floor[i];
+  }
+  return diagonal.asDiagonal();
+}
+
+}  // namespace
+
+const std::vector<std::string>& LocalizationMethodNames() {
+  static const std::vector<std::string> kNames = {"amcl", "semantic-amcl", "semantic-amcl-bow",
+                                                  "semantic-scanmatch", "scanmatch-global"};
+  return kNames;
+}
+
+std::optional<LocalizationMethod> ParseLocalizationMethod(const std::string& name) {
+  const std::vector<std::string>& names = LocalizationMethodNames();
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) return std::nullopt;
+  return static_cast<LocalizationMethod>(found - names.begin());
+}
+
+std::string LocalizationMethodList() {
+  std::string list;
+  for (const std::string& name : LocalizationMethodNames()) {
+    list += (list.empty() ? "" : ", ") + name;
+  }
+  return list;
+}
+
+const std::string& LocalizationMethodName(LocalizationMethod method) {
+  return LocalizationMethodNames()[static_cast<std::size_t>(method)];
+}
+
+bool IsScanMatcherMethod(LocalizationMethod method) {
+  return method == LocalizationMethod::kSemanticScanMatch ||
+         method == LocalizationMethod::kScanMatchGlobal;
+}
+
+bool IsSemanticMethod(LocalizationMethod method) {
+  return method == LocalizationMethod::kSemanticAmcl ||
+         method == LocalizationMethod::kSemanticAmclBow ||
+         method == LocalizationMethod::kSemanticScanMatch;
+}
+
+const char* LocalizerStateName(LocalizerState state) {
+  switch (state) {
+    case LocalizerState::kLost:
+      return "lost";
+    case LocalizerState::kHypothesesPending:
+      return "hypotheses_pending";
+    case LocalizerState::kTracking:
+      return "tracking";
+  }
+  return "lost";
+}
+
+LocalizerMap::LocalizerMap(const mapping::MapImage& occupancy_in,
+                           const semantic::SemanticMap& semantic_in, const AmclOptions& amcl,
+                           const PreLocalizationOptions& prelocalization,
+                           const ScanMatchRelocalizerOptions& scan_match)
+    : occupancy(occupancy_in),
+      semantic(semantic_in),
+      amcl_options(amcl),
+      localization(occupancy_in, amcl.laser_likelihood_max_dist),
+      prelocalizer(semantic_in, occupancy_in, prelocalization),
+      matcher(occupancy_in, scan_match) {}
+
+Localizer::Localizer(const LocalizerMap& map, LocalizationMethod method,
+                     const LocalizerOptions& options)
+    : map_(map),
+      method_(method),
+      options_(options),
+      amcl_(map.localization, map.amcl_options, MakeRng(options.seed, 1)),
+      memory_(options.memory) {
+  if (!IsScanMatcherMethod(method_)) amcl_.InitializeGlobal();
+}
+
+void Localizer::AddFrame(LocalizerFrame frame) { pending_frames_.push_back(std::move(frame)); }
+
+int Localizer::AddScan(const StampedScan& scan) {
+  scan_points_.reset();
+  if (pending_initial_pose_) {
+    last_odometry_ = scan.odometry;
+    const auto [pose, covariance] = *std::exchange(pending_initial_pose_, std::nullopt);
+    SetInitialPose(pose, covariance);
+  }
+  // The frame taken at this scan, if any.
+  std::optional<LocalizerFrame> frame;
+  while (!pending_frames_.empty() && pending_frames_.front().stamp <= scan.scan.timestamp + 1e-6) {
+    frame = std::move(pending_frames_.front());
+    pending_frames_.pop_front();
+  }
+  const int iterations = Step(scan, frame ? &*frame : nullptr);
+  last_odometry_ = scan.odometry;
+  ++statistics_.scans;
+  statistics_.iterations += iterations;
+  return iterations;
+}
+
+void Localizer::SetInitialPose(const Pose2& pose, const Eigen::Matrix3d& covariance) {
+  if (!last_odometry_) {
+    pending_initial_pose_.emplace(pose, covariance);
+    return;
+  }
+  const Pose2 odometry = *last_odometry_;
+  memory_.Clear();
+  prior_.reset();
+  amcl_.ClearPosePrior();
+  if (IsScanMatcherMethod(method_)) {
+    StartTracking(odometry, pose);
+    return;
+  }
+  amcl_.InitializePose(pose, SampleableCovariance(covariance));
+  seeded_ = true;
+  filter_pose_ = pose;
+  filter_odometry_ = odometry;
+  estimate_ = pose;
+}
+
+void Localizer::RelocalizeGlobally() {
+  pending_initial_pose_.reset();
+  // Objects remembered by odometry sit where they were seen relative to the old pose; after a
+  // kidnap they would place the robot wrongly.
+  memory_.Clear();
+  prior_.reset();
+  hypotheses_.clear();
+  amcl_.ClearPosePrior();
+  estimate_.reset();
+  filter_pose_.reset();
+  seeded_ = false;
+  if (IsScanMatcherMethod(method_)) {
+    ResetSearch();
+  } else {
+    amcl_.InitializeGlobal();
+  }
+}
+
+void Localizer::ResetSearch() {
+  tracking_ = false;
+  start_odometry_.reset();
+  last_heading_ = 0.0;
+  turned_ = 0.0;
+  single_object_tried_ = false;
+}
+
+Eigen::Matrix3d Localizer::covariance() const {
+  if (IsScanMatcherMethod(method_) && !tracking_) return Eigen::Matrix3d::Zero();
+  return amcl_.Estimate().covariance;
+}
+
+const std::vector<Particle>& Localizer::particles() const {
+  static const std::vector<Particle> kNone;
+  if (IsScanMatcherMethod(method_) && !tracking_) return kNone;
+  return amcl_.particles();
+}
+
+LocalizerState Localizer::state() const {
+  if (IsScanMatcherMethod(method_)) {
+    return tracking_ ? LocalizerState::kTracking : LocalizerState::kLost;
+  }
+  if (!estimate_) return LocalizerState::kLost;
+  if (amcl_.Estimate().converged && !amcl_.FailureDetected()) return LocalizerState::kTracking;
+  return seeded_ ? LocalizerState::kHypothesesPending : LocalizerState::kLost;
+}
+
+const std::vector<Eigen::Vector2d>& Localizer::ScanPoints(const StampedScan& scan) const {
+  // Made on first use: most frames yield no hypothesis to rate and no search.
+  if (!scan_points_) scan_points_ = map_.matcher.MatchPoints(scan.scan, scan.LaserOffset());
+  return *scan_points_;
+}
+
+// Rates a pose by how well this scan fits the map there: the mean match-grid value M of its
+// returns, as the branch-and-bound search scores a pose (sharp, σ 0.05 m: the hypotheses are
+// aligned to their objects first, and a softer fit, σ 0.15 m, ranked look-alike hypotheses a
+// few decimetres apart badly, first-hypothesis error 0.20 m instead of 0.15 m on the e2e test's
+// trials).
+std::function<double(const Pose2&)> Localizer::LaserScorer(const StampedScan& scan) const {
+  return [this, &scan](const Pose2& pose) {
+    return mapping::CellScore(map_.matcher.grid(), ScanPoints(scan), pose);
+  };
+}
+
+void Localizer::NoteHypotheses(const std::vector<PoseCandidate>& candidates, bool first_counts) {
+  if (candidates.empty()) return;
+  hypotheses_ = ToHypotheses(candidates);
+  if (first_counts && !statistics_.first_prelocalization) {
+    statistics_.first_prelocalization = candidates.front().pose;
+  }
+}
+
+// Remembers a frame's objects; returns what pre-localization may use now: nothing when the
+// frame shows no object (what is remembered gave its hypotheses when it was seen).
+std::vector<ObservedObject> Localizer::Observe(const StampedScan& scan,
+                                               const LocalizerFrame& frame) {
+  std::vector<ObservedObject> observed =
+      ObserveObjects(frame.detections, frame.camera, map_.prelocalizer.options().min_score);
+  if (!options_.observation_memory) return observed;
+  memory_.Add(scan.odometry, observed);  // also when empty: it counts the turn
+  if (observed.empty()) return observed;
+  return memory_.Recall(scan.odometry);
+}
+
+std::vector<PoseCandidate> Localizer::PreLocalize(const StampedScan& scan,
+                                                  const std::vector<ObservedObject>& observed,
+                                                  int min_agreeing) {
+  if (observed.size() < 2) return {};
+  std::vector<PoseCandidate> candidates =
+      map_.prelocalizer.Localize(observed, LaserScorer(scan), nullptr, min_agreeing);
+  ++statistics_.prelocalizations;
+  NoteHypotheses(candidates, true);
+  return candidates;
+}
+
+std::vector<PoseCandidate> Localizer::PreLocalizeSingle(
+    const StampedScan& scan, const std::vector<ObservedObject>& observed) {
+  // Not noted as the first pre-localization: its many circle hypotheses are for the scan matcher
+  // to tell apart, and the benchmark's pre-localization error is the paper's (pairs).
+  std::vector<PoseCandidate> candidates =
+      map_.prelocalizer.LocalizeSingle(observed, LaserScorer(scan));
+  ++statistics_.single_object_prelocalizations;
+  NoteHypotheses(candidates, false);
+  return candidates;
+}
+
+// Seed 000 §3.1 steps 3–4: the most similar keyframes name the object hidden now; its two chain
+// neighbours, seen now, pre-localize the robot.
+std::vector<PoseCandidate> Localizer::PreLocalizeHidden(
+    const StampedScan& scan, const LocalizerFrame& frame,
+    const std::vector<ObservedObject>& observed) {
+  if (!map_.recognizer || frame.detections.empty()) return {};
+  cv::Mat image = frame.color;
+  if (image.empty()) {
+    if (frame.color_path.empty()) return {};
+    Result<cv::Mat> read = ReadColorImage(frame.color_path);
+    if (!read.ok()) return {};
+    image = *read;
+  }
+  const cv::Mat descriptors = bow::ExtractOrbDescriptors(image, bow::OrbOptions());
+  const bow::OcclusionQuery query =
+      bow::QueryOccludedObjects(*map_.recognizer, map_.semantic, descriptors, frame.detections);
+  const auto& occluded = query.inference.inference.occluded;
+  if (occluded.empty()) return {};
+  const std::vector<int> neighbours = {occluded.front().upstream, occluded.front().downstream};
+  std::vector<PoseCandidate> candidates =
+      map_.prelocalizer.Localize(observed, LaserScorer(scan), &neighbours);
+  ++statistics_.hidden_object_prelocalizations;
+  NoteHypotheses(candidates, true);
+  return candidates;
+}
+
+int Localizer::Step(const StampedScan& scan, const LocalizerFrame* frame) {
+  switch (method_) {
+    case LocalizationMethod::kAmcl:
+      return Track(scan);
+    case LocalizationMethod::kSemanticAmcl:
+    case LocalizationMethod::kSemanticAmclBow:
+      return StepSemanticAmcl(scan, frame);
+    case LocalizationMethod::kSemanticScanMatch:
+    case LocalizationMethod::kScanMatchGlobal:
+      return StepScanMatcher(scan, frame);
+  }
+  return 0;
+}
+
+int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* frame) {
+  // Every frame with two objects in view is a semantic measurement: the first seeds the
+  // particles, each later one renews the prior; between frames the prior moves with the
+  // odometry (the robot turns between frames, the prior's heading must follow).
+  if (frame) {
+    const std::vector<ObservedObject> observed = Observe(scan, *frame);
+    std::vector<PoseCandidate> candidates = PreLocalize(scan, observed);
+    if (candidates.empty() && method_ == LocalizationMethod::kSemanticAmclBow) {
+      candidates = PreLocalizeHidden(scan, *frame, observed);
+    }
+    if (!candidates.empty()) {
+      prior_ = ToHypotheses(candidates);
+      prior_odometry_ = scan.odometry;
+      if (!seeded_ || amcl_.FailureDetected()) {
+        amcl_.InitializeFromHypotheses(*prior_);
+        filter_pose_.reset();
+        seeded_ = true;
+      } else {
+        // Once seeded, the prior only has to keep the filter in the right place; a looser one
+        // leaves the fine pose to the laser.
+        for (PoseHypothesis& h : *prior_) h.covariance *= kRenewedPriorScale;
+      }
+    }
+  }
+  if (prior_) {
+    std::vector<PoseHypothesis> moved = *prior_;
+    const Pose2 motion = prior_odometry_.Between(scan.odometry);
+    for (PoseHypothesis& h : moved) h.pose = h.pose * motion;
+    amcl_.SetPosePrior(moved);
+  }
+  return Track(scan);
+}
+
+// Scan-matcher methods: relocalize, then track (semantic-scanmatch re-checking the lock).
+int Localizer::StepScanMatcher(const StampedScan& scan, const LocalizerFrame* frame) {
+  const bool semantic = method_ == LocalizationMethod::kSemanticScanMatch;
+  if (!tracking_) {
+    NoteTurn(scan);
+    // Before a full turn, a scan without a frame gives the semantic method nothing to search;
+    // it is not timed (the thread CPU clock is a system call, ~0.5 µs, all it would measure).
+    if (semantic && !frame && !FullTurn()) return 0;
+    const double search_start = ThreadCpuSeconds();
+    std::optional<RelocalizationResult> result = Relocalize(scan, frame);
+    statistics_.search_cpu_seconds += ThreadCpuSeconds() - search_start;
+    if (!result) return 0;
+    if (!result->success) return 1;
+    StartTracking(scan.odometry, result->pose);
+    return 1;
+  }
+  const int updates = Track(scan);
+  if (frame && semantic && options_.recheck_lock) {
+    const double search_start = ThreadCpuSeconds();
+    const bool moved = RecheckLock(scan, *frame);
+    statistics_.search_cpu_seconds += ThreadCpuSeconds() - search_start;
+    return updates + (moved ? 1 : 0);
+  }
+  return updates;
+}
+
+void Localizer::StartTracking(const Pose2& odometry, const Pose2& pose) {
+  amcl_.InitializePose(pose, kTrackingCovariance);
+  tracking_ = true;
+  filter_pose_ = pose;
+  filter_odometry_ = odometry;
+  estimate_ = pose;
+}
+
+// A lock from a look-alike pair explains that pair; as the robot turns, the frames show objects
+// it cannot explain. When a frame's pre-localization finds poses, far from the tracked one, that
+// explain more of the objects seen, the scan matcher searches them beside the tracked pose and
+// the best match is kept. Returns whether the robot was moved.
+bool Localizer::RecheckLock(const StampedScan& scan, const LocalizerFrame& frame) {
+  const std::vector<ObservedObject> observed = Observe(scan, frame);
+  if (observed.size() < 2) return false;
+  // Only poses explaining more than the tracked one are of interest: the others are dropped
+  // before the laser rates them.
+  const int explained = map_.prelocalizer.Agreeing(observed, *estimate_);
+  if (explained >= static_cast<int>(observed.size())) return false;  // none can explain more
+  const std::vector<PoseCandidate> candidates = PreLocalize(scan, observed, explained + 1);
+  std::vector<PoseCandidate> better;
+  for (const PoseCandidate& c : candidates) {
+    if (AnotherPlace(c.pose, *estimate_)) better.push_back(c);
+  }
+  if (better.empty()) return false;
+  std::vector<PoseHypothesis> priors = ToHypotheses(better);
+  priors.insert(priors.begin(), {*estimate_, kTrackingCovariance, 1.0});
+  const RelocalizationResult result = map_.matcher.Relocalize(ScanPoints(scan), priors);
+  if (!result.success || result.hypothesis == 0) return false;
+  StartTracking(scan.odometry, result.pose);
+  return true;
+}
+
+// Adds the turn since the last scan to what the robot turned while lost.
+void Localizer::NoteTurn(const StampedScan& scan) {
+  if (start_odometry_) {
+    turned_ += std::abs(NormalizeAngle(scan.odometry.theta - last_heading_));
+  } else {
+    start_odometry_ = scan.odometry;
+  }
+  last_heading_ = scan.odometry.theta;
+}
+
+bool Localizer::FullTurn() const { return turned_ >= 2.0 * M_PI; }
+
+// One relocalization attempt of a scan-matcher method; nothing when it waits for a prior.
+std::optional<RelocalizationResult> Localizer::Relocalize(const StampedScan& scan,
+                                                          const LocalizerFrame* frame) {
+  if (method_ == LocalizationMethod::kScanMatchGlobal) {
+    return map_.matcher.RelocalizeGlobal(ScanPoints(scan));
+  }
+  std::vector<PoseCandidate> candidates;
+  std::vector<ObservedObject> observed;
+  if (frame) {
+    observed = Observe(scan, *frame);
+    candidates = PreLocalize(scan, observed);
+  }
+  const bool full_turn = FullTurn();
+  if (candidates.empty() && full_turn && options_.single_object && !single_object_tried_) {
+    // Once: the circles give many windows, and a turn's objects are all remembered (also when
+    // this scan has no frame or its frame shows nothing).
+    if (observed.empty() && options_.observation_memory) observed = memory_.Recall(scan.odometry);
+    if (!observed.empty()) {
+      single_object_tried_ = true;
+      candidates = PreLocalizeSingle(scan, observed);
+    }
+  }
+  if (!candidates.empty()) {
+    return map_.matcher.Relocalize(ScanPoints(scan), ToHypotheses(candidates));
+  }
+  // Without a semantic prior after a full turn (no two objects in view anywhere around), the
+  // whole map is searched, as a robot would rather than stay lost.
+  if (full_turn) return map_.matcher.RelocalizeGlobal(ScanPoints(scan));
+  return std::nullopt;
+}
+
+// One AMCL step. The filter updates only after the robot moved update_min_d / turned
+// update_min_a; in between, as nav2 publishes map → odom, the pose is the last filter pose moved
+// on by odometry.
+int Localizer::Track(const StampedScan& scan) {
+  const bool updated = amcl_.ProcessScan(scan.scan, scan.odometry, scan.LaserOffset());
+  if (updated || !filter_pose_) {
+    filter_pose_ = amcl_.Estimate().pose;
+    filter_odometry_ = scan.odometry;
+  }
+  estimate_ = *filter_pose_ * filter_odometry_.Between(scan.odometry);
+  return updated ? 1 : 0;
+}
+
+}  // namespace semchain::localization

@@ -1,0 +1,223 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bow/keyframe_recognizer.h"
+#include "core/pose2.h"
+#include "localization/amcl.h"
+#include "localization/localization_map.h"
+#include "localization/observation_memory.h"
+#include "localization/prelocalization.h"
+#include "localization/scan_match_relocalizer.h"
+#include "mapping/map_io.h"
+#include "semantic/semantic_map.h"
+#include "sensors/camera.h"
+#include "sensors/detection.h"
+#include "sensors/laser_scan.h"
+
+// The relocalization methods of DESIGN.md §4 as one online object: fed odometry with scans and
+// camera frames in time order, asked at any moment for the pose, its covariance, the particles
+// and its state.
+//   amcl                AMCL initialised globally (laser only, nav2 defaults)
+//   semantic-amcl       chain pre-localization (seed 000 §3.1) seeds AMCL with Gaussians around
+//                       the hypotheses and weights its particles by the prior (seed 000 §3.2);
+//                       laser-only AMCL until a frame shows two objects; every later such frame
+//                       renews the prior (moved on by odometry in between), and re-seeds the
+//                       particles when the filter reports a collapse
+//   semantic-amcl-bow   semantic-amcl; when a frame's objects give no hypothesis, the bag of words
+//                       finds the most similar keyframe, names the object hidden now and
+//                       pre-localizes from its two chain neighbours (seed 000 §3.1 steps 3–4)
+//   semantic-scanmatch  the hypotheses bound the window of branch-and-bound + Ceres (seed 001);
+//                       after a full turn without two objects in view, windows around
+//                       single-object hypotheses, then the whole map
+//   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
+// The semantic methods pre-localize from every object seen during the last turn (see
+// ObservationMemory). After a scan matcher has found the robot, AMCL tracks it.
+//
+//   LocalizerMap map(occupancy, semantic, AmclOptions(), PreLocalizationOptions(),
+//                    ScanMatchRelocalizerOptions());
+//   Localizer localizer(map, LocalizationMethod::kSemanticScanMatch, LocalizerOptions());
+//   localizer.AddFrame(frame);          // whenever the camera gives one
+//   localizer.AddScan(scan);            // every scan, with its odometry
+//   if (localizer.pose()) use(*localizer.pose(), localizer.covariance());
+namespace semchain::localization {
+
+enum class LocalizationMethod {
+  kAmcl,
+  kSemanticAmcl,
+  kSemanticAmclBow,
+  kSemanticScanMatch,
+  kScanMatchGlobal,
+};
+
+// The stable names of DESIGN.md §4, in the order above.
+const std::vector<std::string>& LocalizationMethodNames();
+std::optional<LocalizationMethod> ParseLocalizationMethod(const std::string& name);
+// "amcl, semantic-amcl, …" for messages.
+std::string LocalizationMethodList();
+const std::string& LocalizationMethodName(LocalizationMethod method);
+// semantic-scanmatch and scanmatch-global: a scan matcher finds the robot, AMCL then tracks.
+bool IsScanMatcherMethod(LocalizationMethod method);
+// The methods that read the camera's detections.
+bool IsSemanticMethod(LocalizationMethod method);
+
+// Everything a method may use about the environment, built once per map and shared (read only)
+// by any number of localizers.
+struct LocalizerMap {
+  LocalizerMap(const mapping::MapImage& occupancy, const semantic::SemanticMap& semantic,
+               const AmclOptions& amcl, const PreLocalizationOptions& prelocalization,
+               const ScanMatchRelocalizerOptions& scan_match);
+
+  mapping::MapImage occupancy;
+  semantic::SemanticMap semantic;
+  AmclOptions amcl_options;
+  LocalizationMap localization;
+  PreLocalizer prelocalizer;
+  ScanMatchRelocalizer matcher;
+  // The keyframes of the mapping run with their vocabulary (semantic-amcl-bow); may be null.
+  std::shared_ptr<const bow::KeyframeRecognizer> recognizer;
+};
+
+// How the semantic methods use what the camera saw.
+struct LocalizerOptions {
+  // Pre-localize from every object seen during the turn (carried by odometry into the current
+  // frame), not only from the current frame's.
+  bool observation_memory = true;
+  ObservationMemoryOptions memory;
+  // semantic-scanmatch: after a full turn without two objects forming a mapped pair, search
+  // windows around single-object hypotheses (circles around the mapped objects of a seen class)
+  // before the whole map.
+  bool single_object = true;
+  // semantic-scanmatch: while tracking, every frame's pre-localization checks the lock; a pose
+  // that explains more of the objects seen than the tracked one is searched beside it, and the
+  // scan matcher's better match is kept (a look-alike pair can lock the robot in the wrong place).
+  bool recheck_lock = true;
+  // Seeds the filter's random stream.
+  std::uint64_t seed = 1;
+};
+
+// One camera frame: its detections, and for semantic-amcl-bow its colour image (given, or read
+// from 'color_path' when a frame needs it).
+struct LocalizerFrame {
+  double stamp = 0.0;
+  std::vector<Detection> detections;
+  MountedCamera camera;  // the camera that saw them, on the robot
+  cv::Mat color;
+  std::filesystem::path color_path;
+};
+
+enum class LocalizerState {
+  kLost,               // no pose the method stands by
+  kHypothesesPending,  // AMCL seeded by pre-localization, its particles not yet on one pose
+  kTracking,           // the robot found: a scan matcher's match or a converged filter
+};
+const char* LocalizerStateName(LocalizerState state);
+
+// What the localizer did so far (for benchmarks and diagnostics).
+struct LocalizerStatistics {
+  int scans = 0;
+  int iterations = 0;                          // filter updates and matcher runs
+  double search_cpu_seconds = 0.0;             // scan matchers: searching before tracking began
+  std::optional<Pose2> first_prelocalization;  // the first best hypothesis
+  int prelocalizations = 0;                    // pre-localizations with ≥ 2 objects
+  int single_object_prelocalizations = 0;      // ... with single-object hypotheses
+  int hidden_object_prelocalizations = 0;      // ... from a hidden object's neighbours (BoW)
+};
+
+class Localizer {
+ public:
+  Localizer(const LocalizerMap& map, LocalizationMethod method, const LocalizerOptions& options);
+  Localizer(const Localizer&) = delete;
+  Localizer& operator=(const Localizer&) = delete;
+
+  // Queues a camera frame; the first scan at or after its stamp uses it (of several frames
+  // before one scan, the latest).
+  void AddFrame(LocalizerFrame frame);
+  // Processes one scan with the odometry at its time; returns the filter updates and matcher
+  // runs it took.
+  int AddScan(const StampedScan& scan);
+
+  // The robot is at 'pose' (map frame) at the last scan's odometry (before any scan: at the
+  // first one's), as /initialpose says.
+  void SetInitialPose(const Pose2& pose, const Eigen::Matrix3d& covariance);
+  // Forgets where the robot is and searches for it again from the next scan on (a kidnapped
+  // robot, /global_localization).
+  void RelocalizeGlobally();
+
+  // The pose after the last scan (nothing while the method has no estimate); between filter
+  // updates, the filter's last pose moved on by odometry.
+  const std::optional<Pose2>& pose() const { return estimate_; }
+  // The filter's covariance (x, y, θ) at its last update.
+  Eigen::Matrix3d covariance() const;
+  // The particles of the method's AMCL (none for a scan matcher still searching).
+  const std::vector<Particle>& particles() const;
+  LocalizerState state() const;
+  // The hypotheses of the latest pre-localization (map frame, at the time they were made).
+  const std::vector<PoseHypothesis>& hypotheses() const { return hypotheses_; }
+  const LocalizerStatistics& statistics() const { return statistics_; }
+  LocalizationMethod method() const { return method_; }
+  // The filter, for those who want its counters (read only).
+  const Amcl& filter() const { return amcl_; }
+
+ private:
+  const std::vector<Eigen::Vector2d>& ScanPoints(const StampedScan& scan) const;
+  std::function<double(const Pose2&)> LaserScorer(const StampedScan& scan) const;
+  void NoteHypotheses(const std::vector<PoseCandidate>& candidates, bool first_counts);
+  std::vector<ObservedObject> Observe(const StampedScan& scan, const LocalizerFrame& frame);
+  std::vector<PoseCandidate> PreLocalize(const StampedScan& scan,
+                                         const std::vector<ObservedObject>& observed,
+                                         int min_agreeing = 0);
+  std::vector<PoseCandidate> PreLocalizeSingle(const StampedScan& scan,
+                                               const std::vector<ObservedObject>& observed);
+  std::vector<PoseCandidate> PreLocalizeHidden(const StampedScan& scan, const LocalizerFrame& frame,
+                                               const std::vector<ObservedObject>& observed);
+  int Step(const StampedScan& scan, const LocalizerFrame* frame);
+  int StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* frame);
+  int StepScanMatcher(const StampedScan& scan, const LocalizerFrame* frame);
+  void StartTracking(const Pose2& odometry, const Pose2& pose);
+  bool RecheckLock(const StampedScan& scan, const LocalizerFrame& frame);
+  void NoteTurn(const StampedScan& scan);
+  bool FullTurn() const;
+  std::optional<RelocalizationResult> Relocalize(const StampedScan& scan,
+                                                 const LocalizerFrame* frame);
+  int Track(const StampedScan& scan);
+  void ResetSearch();
+
+  const LocalizerMap& map_;
+  const LocalizationMethod method_;
+  const LocalizerOptions options_;
+  Amcl amcl_;
+  std::deque<LocalizerFrame> pending_frames_;
+  std::optional<Pose2> last_odometry_;  // of the last scan
+  // An initial pose given before the first scan, applied at its odometry.
+  std::optional<std::pair<Pose2, Eigen::Matrix3d>> pending_initial_pose_;
+  std::optional<Pose2> estimate_;
+  std::optional<Pose2> filter_pose_;  // the filter's pose at its last update
+  Pose2 filter_odometry_;             // odometry at that update
+  bool seeded_ = false;               // semantic-amcl: the particles came from hypotheses
+  std::optional<Pose2> start_odometry_;
+  double last_heading_ = 0.0;
+  double turned_ = 0.0;  // radians turned (odometry) before a scan matcher found the robot
+  bool tracking_ = false;
+  // ScanPoints of the scan being processed (a cache, hence mutable).
+  mutable std::optional<std::vector<Eigen::Vector2d>> scan_points_;
+  ObservationMemory memory_;
+  bool single_object_tried_ = false;
+  // The latest pre-localization and the odometry when it was made.
+  std::optional<std::vector<PoseHypothesis>> prior_;
+  Pose2 prior_odometry_;
+  std::vector<PoseHypothesis> hypotheses_;
+  LocalizerStatistics statistics_;
+};
+
+}  // namespace semchain::localization

@@ -1,0 +1,523 @@
+#include "localization/prelocalization.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+
+#include "core/angles.h"
+#include "core/transforms.h"
+#include "mapping/distance_field.h"
+#include "semantic/semantic_chain.h"
+
+namespace semchain::localization {
+namespace {
+
+// Mapped pairs farther apart than this are never seen together by a camera of a few metres'
+// range; not indexing them keeps the index small on large maps.
+constexpr double kMaxPairDistance = 15.0;
+// Fixed-point iterations of the centre-behind-surface correction, at most, and the move of the
+// position below which it has settled (the depth changes little with the direction seen from).
+constexpr int kRefinements = 4;
+constexpr double kSettledMeters = 1e-3;
+
+Eigen::Vector2d Unit(const Eigen::Vector2d& v) {
+  const double n = v.norm();
+  return n > 1e-12 ? Eigen::Vector2d(v / n) : Eigen::Vector2d(1.0, 0.0);
+}
+
+// The mean distance from the centre to the outline: the centre's depth behind a surface seen
+// from an unknown side.
+double MeanCenterBehindSurface(const semantic::SemanticObject& object) {
+  double sum = 0.0;
+  constexpr int kDirections = 8;
+  for (int k = 0; k < kDirections; ++k) {
+    const double a = 2.0 * M_PI * k / kDirections;
+    sum += CenterBehindSurface(object, Eigen::Vector2d(std::cos(a), std::sin(a)));
+  }
+  return sum / kDirections;
+}
+
+// The robot heading, as (cos, sin), that turns the direction 'seen' (robot frame) into the
+// direction from 'at' to 'centre' (world): the complex product of the one by the conjugate of
+// the other. Headings compared and averaged this way need no arc tangent.
+Eigen::Vector2d HeadingFrom(const Eigen::Vector2d& at, const Eigen::Vector2d& centre,
+                            const Eigen::Vector2d& seen) {
+  const Eigen::Vector2d world = Unit(centre - at);
+  const Eigen::Vector2d robot = Unit(seen);
+  return {world.dot(robot), robot.x() * world.y() - robot.y() * world.x()};
+}
+
+}  // namespace
+
+bool PreLocalizationOptions::Validate(std::string* error) const {
+  if (!(distance_tolerance > 0.0 && distance_tolerance < 1.0)) {
+    *error = "distance_tolerance (alpha) must be in (0, 1)";
+    return false;
+  }
+  if (!(heading_agreement > 0.0) || !(agreement_radius > 0.0) || max_hypotheses < 1 ||
+      !(position_std_base > 0.0) || !(heading_std > 0.0) || clearance < 0.0) {
+    *error = "tolerances, standard deviations and max_hypotheses must be positive";
+    return false;
+  }
+  return true;
+}
+
+std::vector<ObservedObject> ObserveObjects(const std::vector<Detection>& detections,
+                                           const MountedCamera& camera, double min_score) {
+  std::vector<ObservedObject> observed;
+  for (std::size_t i = 0; i < detections.size(); ++i) {
+    const Detection& d = detections[i];
+    if (d.score < min_score || !(d.depth_m > 0.0)) continue;
+    // Box edges are pixel boundaries; pixel u covers [u − 0.5, u + 0.5).
+    const double u = 0.5 * (d.box[0] + d.box[2]) - 0.5;
+    const double v = 0.5 * (d.box[1] + d.box[3]) - 0.5;
+    const Eigen::Vector3d robot =
+        CameraToRobot(camera.robot_from_camera, camera.intrinsics.Backproject(u, v, d.depth_m));
+    ObservedObject object;
+    object.class_name = d.class_name;
+    object.surface = robot.head<2>();
+    object.range = object.surface.norm();
+    object.bearing = std::atan2(object.surface.y(), object.surface.x());
+    object.detection = static_cast<int>(i);
+    observed.push_back(object);
+  }
+  return observed;
+}
+
+int IntersectCircles(const Eigen::Vector2d& c0, double r0, const Eigen::Vector2d& c1, double r1,
+                     double slack, Eigen::Vector2d out[2]) {
+  const Eigen::Vector2d delta = c1 - c0;
+  const double d = delta.norm();
+  if (d < 1e-9) return 0;  // concentric: no point, or a whole circle
+  const Eigen::Vector2d u = delta / d;
+  if (d > r0 + r1) {  // apart
+    if (d - (r0 + r1) > slack) return 0;
+    out[0] = c0 + u * (r0 + 0.5 * (d - r0 - r1));
+    return 1;
+  }
+  if (d < std::abs(r0 - r1)) {  // one inside the other
+    if (std::abs(r0 - r1) - d > slack) return 0;
+    const double sign = r0 >= r1 ? 1.0 : -1.0;
+    out[0] = c0 + sign * u * (r0 - 0.5 * (std::abs(r0 - r1) - d));
+    return 1;
+  }
+  const double a = (r0 * r0 - r1 * r1 + d * d) / (2.0 * d);
+  const double h2 = r0 * r0 - a * a;
+  const Eigen::Vector2d base = c0 + a * u;
+  if (h2 <= 1e-12) {
+    out[0] = base;
+    return 1;
+  }
+  const double h = std::sqrt(h2);
+  const Eigen::Vector2d normal(-u.y(), u.x());
+  out[0] = base + h * normal;
+  out[1] = base - h * normal;
+  return 2;
+}
+
+double CenterBehindSurface(const semantic::SemanticObject& object,
+                           const Eigen::Vector2d& direction) {
+  const std::vector<Eigen::Vector2d>& polygon = object.footprint;
+  if (polygon.size() < 3) return 0.0;
+  double best = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Eigen::Vector2d a = polygon[k] - object.center;
+    const Eigen::Vector2d e = polygon[(k + 1) % polygon.size()] - polygon[k];
+    // Solve t·direction = a + s·e by Cramer's rule, t = t_num / det and s = s_num / det; the
+    // tests are made on the numerators (det made positive), and only a farther hit divides: this
+    // runs for every edge of every object on every hypothesis.
+    double det = direction.y() * e.x() - direction.x() * e.y();
+    if (std::abs(det) < 1e-12) continue;
+    double t_num = a.y() * e.x() - a.x() * e.y();
+    double s_num = direction.x() * a.y() - direction.y() * a.x();
+    if (det < 0.0) {
+      det = -det;
+      t_num = -t_num;
+      s_num = -s_num;
+    }
+    if (t_num > best * det && s_num >= -1e-9 * det && s_num <= (1.0 + 1e-9) * det) {
+      best = t_num / det;
+    }
+  }
+  return best;
+}
+
+PreLocalizer::PreLocalizer(const semantic::SemanticMap& map, const mapping::MapImage& occupancy,
+                           const PreLocalizationOptions& options)
+    : objects_(map.objects), occupancy_(occupancy), options_(options) {
+  for (const semantic::SemanticObject& object : objects_) class_id_.emplace(object.class_name, 0);
+  int next_id = 0;
+  for (auto& [name, id] : class_id_) id = next_id++;  // name order
+  const std::size_t classes = class_id_.size();
+  objects_of_class_.resize(classes);
+  pairs_.resize(classes * classes);
+  std::vector<int> class_of;
+  for (std::size_t o = 0; o < objects_.size(); ++o) {
+    const semantic::SemanticObject& object = objects_[o];
+    class_of.push_back(class_id_.at(object.class_name));
+    objects_of_class_[static_cast<std::size_t>(class_of.back())].push_back(static_cast<int>(o));
+    double radius = 0.0;
+    for (const Eigen::Vector2d& corner : object.footprint) {
+      radius = std::max(radius, (corner - object.center).norm());
+    }
+    outline_radius_.push_back(radius);
+    mean_behind_.push_back(MeanCenterBehindSurface(object));
+  }
+  for (std::size_t a = 0; a < objects_.size(); ++a) {
+    for (std::size_t b = 0; b < objects_.size(); ++b) {
+      if (a == b) continue;
+      const int ca = class_of[a];
+      const int cb = class_of[b];
+      // Each unordered pair once, under its classes in id order (a first when equal).
+      if (ca > cb || (ca == cb && a > b)) continue;
+      const double distance = (objects_[a].center - objects_[b].center).norm();
+      if (distance > kMaxPairDistance) continue;
+      pairs_[static_cast<std::size_t>(ca) * classes + static_cast<std::size_t>(cb)].push_back(
+          {distance, static_cast<int>(a), static_cast<int>(b)});
+    }
+  }
+  for (std::vector<IndexedPair>& list : pairs_) {
+    std::sort(list.begin(), list.end(),
+              [](const IndexedPair& x, const IndexedPair& y) { return x.distance < y.distance; });
+  }
+  if (occupancy.width > 0 && occupancy.height > 0) {
+    cv::distanceTransform(mapping::MapCellMask(occupancy, mapping::CellState::kFree), clearance_,
+                          cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    clearance_ *= occupancy.resolution;
+  }
+}
+
+std::vector<int> PreLocalizer::ClassesOf(const std::vector<ObservedObject>& observed) const {
+  std::vector<int> classes;
+  classes.reserve(observed.size());
+  for (const ObservedObject& s : observed) {
+    const auto it = class_id_.find(s.class_name);
+    classes.push_back(it == class_id_.end() ? -1 : it->second);
+  }
+  return classes;
+}
+
+template <typename Visit>
+void PreLocalizer::ForEachPair(int class_a, int class_b, double d, Visit&& visit) const {
+  if (class_a < 0 || class_b < 0) return;
+  const bool swapped = class_a > class_b;
+  const std::vector<IndexedPair>& list =
+      pairs_[static_cast<std::size_t>(std::min(class_a, class_b)) * class_id_.size() +
+             static_cast<std::size_t>(std::max(class_a, class_b))];
+  const double low = d / (1.0 + options_.distance_tolerance);
+  const double high = d / (1.0 - options_.distance_tolerance);
+  auto first =
+      std::upper_bound(list.begin(), list.end(), low,
+                       [](double value, const IndexedPair& p) { return value < p.distance; });
+  for (; first != list.end() && first->distance < high; ++first) {
+    if (swapped) {
+      visit(first->b, first->a, first->distance);
+    } else {
+      visit(first->a, first->b, first->distance);
+    }
+    // Same classes: either object may be the first one seen.
+    if (class_a == class_b) visit(first->b, first->a, first->distance);
+  }
+}
+
+std::vector<std::tuple<int, int, double>> PreLocalizer::RetrievePairs(const std::string& class_a,
+                                                                      const std::string& class_b,
+                                                                      double d) const {
+  std::vector<std::tuple<int, int, double>> found;
+  const auto a = class_id_.find(class_a);
+  const auto b = class_id_.find(class_b);
+  if (a == class_id_.end() || b == class_id_.end()) return found;
+  ForEachPair(a->second, b->second, d, [&](int oa, int ob, double distance) {
+    found.emplace_back(objects_[static_cast<std::size_t>(oa)].id,
+                       objects_[static_cast<std::size_t>(ob)].id, distance);
+  });
+  return found;
+}
+
+bool PreLocalizer::InFreeSpace(const Eigen::Vector2d& point) const {
+  if (clearance_.empty()) return false;
+  const semantic::GridGeometry geometry = semantic::GeometryOf(occupancy_);
+  const Eigen::Vector2i cell = geometry.CellOf(point);
+  if (!geometry.Contains(cell)) return false;
+  // The distance to the nearest non-free cell is 0 exactly on the cells that are not free.
+  const float clearance = clearance_.at<float>(cell.y(), cell.x());
+  return clearance > 0.0f && clearance >= options_.clearance;
+}
+
+void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j,
+                                     int a, int b, std::vector<PoseCandidate>* out) const {
+  const semantic::SemanticObject& oa = objects_[a];
+  const semantic::SemanticObject& ob = objects_[b];
+  const ObservedObject& si = observed[i];
+  const ObservedObject& sj = observed[j];
+  // Where the objects' centres are in the robot frame, the camera having seen their surfaces:
+  // behind the surface by the centre's depth in the direction seen (refined below).
+  const auto centre_in_robot = [](const ObservedObject& s, double behind) {
+    return Eigen::Vector2d(s.surface + behind * Unit(s.surface));
+  };
+  Eigen::Vector2d points[2];
+  // Range errors grow with range: far circles may miss each other by more.
+  const double slack =
+      options_.circle_slack + options_.circle_slack_per_metre * (si.range + sj.range);
+  const int count = IntersectCircles(
+      oa.center, centre_in_robot(si, mean_behind_[static_cast<std::size_t>(a)]).norm(), ob.center,
+      centre_in_robot(sj, mean_behind_[static_cast<std::size_t>(b)]).norm(), slack, points);
+  // |h_i − h_j| ≤ heading_agreement is cos(h_i − h_j) ≥ cos(heading_agreement).
+  const double min_heading_cosine =
+      options_.heading_agreement >= kPi ? -2.0 : std::cos(options_.heading_agreement);
+  for (int k = 0; k < count; ++k) {
+    // Refine with the depth behind the surface seen from this position (a fixed point: the
+    // depth depends on the direction, the direction on the position).
+    Eigen::Vector2d x = points[k];
+    Eigen::Vector2d pi, pj;
+    bool lost = false;
+    for (int iteration = 0; iteration < kRefinements; ++iteration) {
+      pi = centre_in_robot(si, CenterBehindSurface(oa, Unit(x - oa.center)));
+      pj = centre_in_robot(sj, CenterBehindSurface(ob, Unit(x - ob.center)));
+      Eigen::Vector2d refined[2];
+      const int n = IntersectCircles(oa.center, pi.norm(), ob.center, pj.norm(), slack, refined);
+      if (n == 0) {
+        lost = true;
+        break;
+      }
+      const Eigen::Vector2d next =
+          n == 2 && (refined[1] - x).norm() < (refined[0] - x).norm() ? refined[1] : refined[0];
+      const bool settled = (next - x).norm() < kSettledMeters;
+      x = next;
+      if (settled) break;
+    }
+    if (lost) continue;
+    // The heading each bearing gives at a position; the mirror solution disagrees.
+    const auto headings_agree = [&](const Eigen::Vector2d& at) {
+      return HeadingFrom(at, oa.center, pi).dot(HeadingFrom(at, ob.center, pj)) >=
+             min_heading_cosine;
+    };
+    PoseCandidate candidate;
+    // The circular mean of the two headings: the angle of the sum of their unit vectors.
+    const Eigen::Vector2d mean = HeadingFrom(x, oa.center, pi) + HeadingFrom(x, ob.center, pj);
+    candidate.pose = Pose2(x.x(), x.y(), std::atan2(mean.y(), mean.x()));
+    if (options_.refine) {
+      // Ranges and bearings together; the bearings must then agree at the refined pose.
+      const std::array<Match, 2> pair = {Match{i, a}, Match{j, b}};
+      Refine(observed, pair, &candidate.pose);
+    }
+    // Free space first: one cell read.
+    if (!InFreeSpace(candidate.pose.translation())) continue;
+    if (!headings_agree(candidate.pose.translation())) continue;
+    const double sigma =
+        options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
+    candidate.covariance =
+        Eigen::Vector3d(sigma * sigma, sigma * sigma, options_.heading_std * options_.heading_std)
+            .asDiagonal();
+    out->push_back(candidate);
+  }
+}
+
+void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
+                                 const std::vector<int>& classes, const Pose2& pose,
+                                 std::vector<Match>* matched) const {
+  matched->clear();
+  const Eigen::Isometry2d world_from_robot = pose.ToIsometry();
+  for (std::size_t k = 0; k < observed.size(); ++k) {
+    if (classes[k] < 0) continue;
+    const ObservedObject& s = observed[k];
+    const Eigen::Vector2d surface = world_from_robot * s.surface;
+    const Eigen::Vector2d ray = Unit(surface - pose.translation());
+    int best = -1;
+    double best_error = options_.agreement_radius + options_.agreement_per_metre * s.range;
+    for (const int o : objects_of_class_[static_cast<std::size_t>(classes[k])]) {
+      const semantic::SemanticObject& object = objects_[static_cast<std::size_t>(o)];
+      // The centre lies at most the outline's radius behind the surface: an object farther than
+      // that plus the best error cannot do better (most of a large map).
+      if ((surface - object.center).norm() - outline_radius_[static_cast<std::size_t>(o)] >=
+          best_error) {
+        continue;
+      }
+      if (std::any_of(matched->begin(), matched->end(),
+                      [o](const Match& m) { return m.second == o; })) {
+        continue;
+      }
+      const Eigen::Vector2d centre = surface + CenterBehindSurface(object, -ray) * ray;
+      const double error = (centre - object.center).norm();
+      if (error < best_error) {
+        best_error = error;
+        best = o;
+      }
+    }
+    if (best >= 0) matched->emplace_back(static_cast<int>(k), best);
+  }
+}
+
+int PreLocalizer::Agreeing(const std::vector<ObservedObject>& observed, const Pose2& pose) const {
+  std::vector<Match> matched;
+  MatchAgreeing(observed, ClassesOf(observed), pose, &matched);
+  return static_cast<int>(matched.size());
+}
+
+std::vector<PoseCandidate> PreLocalizer::Localize(
+    const std::vector<ObservedObject>& observed,
+    const std::function<double(const Pose2&)>& laser_score, const std::vector<int>* only,
+    int min_agreeing) const {
+  // No pose explains more objects than are seen.
+  if (min_agreeing > static_cast<int>(observed.size())) return {};
+  const auto allowed = [&](int o) {
+    const int id = objects_[static_cast<std::size_t>(o)].id;
+    return only == nullptr || std::find(only->begin(), only->end(), id) != only->end();
+  };
+  const std::vector<int> classes = ClassesOf(observed);
+  std::vector<PoseCandidate> candidates;
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    for (std::size_t j = i + 1; j < observed.size(); ++j) {
+      const double d = (observed[i].surface - observed[j].surface).norm();
+      ForEachPair(classes[i], classes[j], d, [&](int a, int b, double) {
+        if (!allowed(a) || !allowed(b)) return;
+        AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), a, b, &candidates);
+      });
+    }
+  }
+  Rate(observed, classes, laser_score, options_.min_laser_score, min_agreeing, &candidates);
+  return BestDistinct(std::move(candidates));
+}
+
+std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
+    const std::vector<ObservedObject>& observed,
+    const std::function<double(const Pose2&)>& laser_score) const {
+  std::vector<PoseCandidate> candidates;
+  if (!laser_score) return candidates;
+  const std::vector<int> classes = ClassesOf(observed);
+  std::vector<std::size_t> nearest(observed.size());
+  std::iota(nearest.begin(), nearest.end(), std::size_t{0});
+  std::sort(nearest.begin(), nearest.end(), [&observed](std::size_t x, std::size_t y) {
+    return observed[x].range < observed[y].range;
+  });
+  if (static_cast<int>(nearest.size()) > options_.max_single_objects) {
+    nearest.resize(static_cast<std::size_t>(options_.max_single_objects));
+  }
+  for (const std::size_t i : nearest) {
+    if (classes[i] < 0) continue;
+    const ObservedObject& s = observed[i];
+    const Eigen::Vector2d ray = Unit(s.surface);
+    for (const int o : objects_of_class_[static_cast<std::size_t>(classes[i])]) {
+      const semantic::SemanticObject& object = objects_[static_cast<std::size_t>(o)];
+      const double radius = (s.surface + mean_behind_[static_cast<std::size_t>(o)] * ray).norm();
+      const int samples = std::max(
+          8, static_cast<int>(std::ceil(2.0 * M_PI * radius / options_.single_object_step)));
+      for (int k = 0; k < samples; ++k) {
+        const double phi = 2.0 * M_PI * k / samples;
+        const Eigen::Vector2d outward(std::cos(phi), std::sin(phi));
+        // The centre lies behind the surface seen from this side by the depth in this direction.
+        const double range = (s.surface + CenterBehindSurface(object, outward) * ray).norm();
+        const Eigen::Vector2d x = object.center + range * outward;
+        if (!InFreeSpace(x)) continue;
+        PoseCandidate candidate;
+        candidate.pose = Pose2(x.x(), x.y(), std::atan2(-outward.y(), -outward.x()) - s.bearing);
+        const double sigma = options_.position_std_base +
+                             options_.position_std_per_metre * s.range +
+                             0.5 * options_.single_object_step;
+        candidate.covariance = Eigen::Vector3d(sigma * sigma, sigma * sigma,
+                                               options_.heading_std * options_.heading_std)
+                                   .asDiagonal();
+        candidates.push_back(candidate);
+      }
+    }
+  }
+  // The laser rules out most points on the circles: rate only the rest (the agreement with the
+  // other objects costs far more than the laser fit).
+  std::erase_if(candidates, [&](const PoseCandidate& c) {
+    return laser_score(c.pose) < options_.single_object_min_laser_score;
+  });
+  Rate(observed, classes, laser_score, options_.single_object_min_laser_score, 0, &candidates);
+  return BestDistinct(std::move(candidates));
+}
+
+void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
+                          std::span<const Match> matched, Pose2* pose) const {
+  if (matched.size() < 2) return;
+  // The rigid transform that best aligns the centres the camera implies (robot frame) with the
+  // mapped centres (world), in closed form (least squares, as Umeyama without scaling). In 2D the
+  // best rotation is the angle of Σ (cross, dot) of the centred pairs; Σ over centred pairs is
+  // Σ over the pairs less n times the product of the means.
+  Eigen::Vector2d seen_sum = Eigen::Vector2d::Zero();
+  Eigen::Vector2d mapped_sum = Eigen::Vector2d::Zero();
+  double cross = 0.0;
+  double dot = 0.0;
+  for (const auto& [k, o] : matched) {
+    const ObservedObject& s = observed[static_cast<std::size_t>(k)];
+    const semantic::SemanticObject& object = objects_[static_cast<std::size_t>(o)];
+    const Eigen::Vector2d world_ray = Unit(object.center - pose->translation());
+    const Eigen::Vector2d seen =
+        s.surface + CenterBehindSurface(object, -world_ray) * Unit(s.surface);
+    seen_sum += seen;
+    mapped_sum += object.center;
+    cross += seen.x() * object.center.y() - seen.y() * object.center.x();
+    dot += seen.dot(object.center);
+  }
+  const double n = static_cast<double>(matched.size());
+  const Eigen::Vector2d seen_mean = seen_sum / n;
+  const Eigen::Vector2d mapped_mean = mapped_sum / n;
+  cross -= n * (seen_mean.x() * mapped_mean.y() - seen_mean.y() * mapped_mean.x());
+  dot -= n * seen_mean.dot(mapped_mean);
+  const double theta = std::atan2(cross, dot);
+  const Eigen::Vector2d t = mapped_mean - Eigen::Rotation2Dd(theta) * seen_mean;
+  const Pose2 refined(t.x(), t.y(), theta);
+  // An alignment that lands outside free space or far away is not trusted.
+  if (InFreeSpace(refined.translation()) &&
+      (refined.translation() - pose->translation()).norm() < 1.0) {
+    *pose = refined;
+  }
+}
+
+void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
+                        const std::vector<int>& classes,
+                        const std::function<double(const Pose2&)>& laser_score,
+                        double min_laser_score, int min_agreeing,
+                        std::vector<PoseCandidate>* candidates) const {
+  std::vector<Match> matched;
+  for (PoseCandidate& candidate : *candidates) {
+    MatchAgreeing(observed, classes, candidate.pose, &matched);
+    if (options_.refine) {
+      Refine(observed, matched, &candidate.pose);
+      MatchAgreeing(observed, classes, candidate.pose, &matched);
+    }
+    candidate.agreeing = static_cast<int>(matched.size());
+    candidate.matches.clear();
+    if (candidate.agreeing < min_agreeing) continue;  // dropped below
+    for (const auto& [k, o] : matched) {
+      candidate.matches.emplace_back(k, objects_[static_cast<std::size_t>(o)].id);
+    }
+  }
+  std::erase_if(*candidates,
+                [min_agreeing](const PoseCandidate& c) { return c.agreeing < min_agreeing; });
+  if (laser_score) {
+    for (PoseCandidate& candidate : *candidates)
+      candidate.laser_score = laser_score(candidate.pose);
+    std::erase_if(*candidates, [min_laser_score](const PoseCandidate& c) {
+      return c.laser_score < min_laser_score;
+    });
+  }
+}
+
+std::vector<PoseCandidate> PreLocalizer::BestDistinct(std::vector<PoseCandidate> candidates) const {
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const PoseCandidate& x, const PoseCandidate& y) {
+                     if (x.agreeing != y.agreeing) return x.agreeing > y.agreeing;
+                     return x.laser_score > y.laser_score;
+                   });
+  // One hypothesis per place: the best of those that coincide.
+  std::vector<PoseCandidate> kept;
+  for (const PoseCandidate& candidate : candidates) {
+    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const PoseCandidate& k) {
+      return (k.pose.translation() - candidate.pose.translation()).norm() <
+                 options_.merge_distance &&
+             std::abs(NormalizeAngle(k.pose.theta - candidate.pose.theta)) < options_.merge_heading;
+    });
+    if (!duplicate) kept.push_back(candidate);
+    if (static_cast<int>(kept.size()) >= options_.max_hypotheses) break;
+  }
+  return kept;
+}
+
+}  // namespace semchain::localization

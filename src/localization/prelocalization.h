@@ -1,0 +1,192 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <map>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/pose2.h"
+#include "mapping/map_io.h"
+#include "semantic/semantic_map.h"
+#include "sensors/camera.h"
+#include "sensors/detection.h"
+
+// Semantic pre-localization (seed 000 §3.1, seed 001 §2.1–2.2, DESIGN.md §3.6): the objects a
+// frame shows are matched to pairs of mapped objects of the same classes whose distance D
+// agrees with the observed one ((1 − α)D < d < (1 + α)D, seed 001); the robot is where the
+// circles around the two mapped centres, with the measured ranges as radii, intersect in free
+// space, its heading where the bearings agree. Look-alike places give several hypotheses, so all
+// are returned, ranked by how many of the other objects in view agree and by the laser scan.
+namespace semchain::localization {
+
+struct PreLocalizationOptions {
+  // α of seed 001: a mapped pair at distance D explains an observed distance d when
+  // (1 − α) D < d < (1 + α) D.
+  double distance_tolerance = 0.15;
+  // Circles that miss each other by up to this (metres, range noise) plus 'circle_slack_per_metre'
+  // × the two ranges still give their tangent point.
+  double circle_slack = 0.15;
+  double circle_slack_per_metre = 0.02;
+  // The two bearings of a pair must give headings within this (radians).
+  double heading_agreement = 0.2;
+  // Another object in view agrees with a hypothesis when a mapped object of its class lies
+  // within this distance (metres) plus 'agreement_per_metre' × its range of where the
+  // hypothesis puts it.
+  double agreement_radius = 0.3;
+  double agreement_per_metre = 0.05;
+  // A hypothesis must lie in free space of the occupancy map at least this far (metres) from
+  // anything occupied.
+  double clearance = 0.15;
+  // Hypotheses closer than this (metres and radians) are one.
+  double merge_distance = 0.25;
+  double merge_heading = 0.2;
+  int max_hypotheses = 8;
+  // The covariance given to a hypothesis: σ_xy = base + per_metre × mean range, σ_θ.
+  double position_std_base = 0.05;
+  double position_std_per_metre = 0.03;
+  double heading_std = 0.08;
+  // Detections scoring below this are not used.
+  double min_score = 0.3;
+  // With a laser score given, hypotheses scoring below this are dropped: a confused or
+  // spurious detection can explain a pair, the laser then says the place is wrong.
+  double min_laser_score = 0.3;
+  // Each hypothesis is refined by aligning the object centres the camera implies with the mapped
+  // ones (least squares over every object it explains): two objects seen nearly opposite each
+  // other fix the position across the line between them, where the circles barely meet.
+  bool refine = true;
+  // Single-object hypotheses (LocalizeSingle): points on each circle this far apart (metres),
+  // the laser fit they need (higher than min_laser_score: nothing else supports them), and how
+  // many of the nearest observations are tried.
+  double single_object_step = 0.1;
+  double single_object_min_laser_score = 0.3;
+  int max_single_objects = 3;
+
+  bool Validate(std::string* error) const;
+};
+
+// An object seen in a frame, in the robot frame: where the camera saw its surface (the box
+// centre's pixel at the detection's depth), and the bearing and range of that point.
+struct ObservedObject {
+  std::string class_name;
+  Eigen::Vector2d surface = Eigen::Vector2d::Zero();  // robot frame, metres
+  double range = 0.0;
+  double bearing = 0.0;
+  int detection = -1;  // index in the frame's detections
+  int frames_ago = 0;  // 0: the current frame (see ObservationMemory)
+};
+
+// The usable detections of a frame (score, depth) as observed objects.
+std::vector<ObservedObject> ObserveObjects(const std::vector<Detection>& detections,
+                                           const MountedCamera& camera, double min_score);
+
+// A robot pose explaining what the frame shows.
+struct PoseCandidate {
+  Pose2 pose;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  int agreeing = 0;          // objects in view that the pose explains (the pair included)
+  double laser_score = 0.0;  // of the current scan at this pose (0 when not rated)
+  std::vector<std::pair<int, int>> matches;  // (observed index, mapped object id)
+};
+
+// The intersections of the circle (c0, r0) with (c1, r1): 0, 1 (tangent, or circles that miss
+// each other by at most 'slack', giving the point between them) or 2 points, written to 'out'.
+int IntersectCircles(const Eigen::Vector2d& c0, double r0, const Eigen::Vector2d& c1, double r1,
+                     double slack, Eigen::Vector2d out[2]);
+
+// Distance from an object's centre to its outline in 'direction' (unit): how far behind the
+// surface the camera sees the centre lies.
+double CenterBehindSurface(const semantic::SemanticObject& object,
+                           const Eigen::Vector2d& direction);
+
+class PreLocalizer {
+ public:
+  PreLocalizer(const semantic::SemanticMap& map, const mapping::MapImage& occupancy,
+               const PreLocalizationOptions& options);
+
+  // Hypotheses for a frame's observed objects (at least two needed), best first.
+  // 'laser_score' (may be empty) rates a pose by the current laser scan, higher is better.
+  // 'only' (may be null) restricts the mapped pairs to these object ids (e.g. the chain
+  // neighbours of an object the bag of words found hidden). Hypotheses that explain fewer than
+  // 'min_agreeing' of the observed objects are dropped before the laser rates them (a caller
+  // that only wants poses explaining more than one it has).
+  std::vector<PoseCandidate> Localize(const std::vector<ObservedObject>& observed,
+                                      const std::function<double(const Pose2&)>& laser_score = {},
+                                      const std::vector<int>* only = nullptr,
+                                      int min_agreeing = 0) const;
+
+  // Hypotheses from single objects, for when no two objects in view form a mapped pair (a
+  // corridor where the objects are far apart): the robot lies on the circle around each mapped
+  // object of the observed class, at the measured range, facing it at the measured bearing. Only
+  // the laser tells the poses on the circles apart, so 'laser_score' is required; the nearest
+  // 'max_single_objects' observations are used, best laser fit first.
+  std::vector<PoseCandidate> LocalizeSingle(
+      const std::vector<ObservedObject>& observed,
+      const std::function<double(const Pose2&)>& laser_score) const;
+
+  // The mapped pairs of classes (a, b) whose distance D satisfies the tolerance for an
+  // observed distance d (seed 001 retrieval): (object id a, object id b, D).
+  std::vector<std::tuple<int, int, double>> RetrievePairs(const std::string& class_a,
+                                                          const std::string& class_b,
+                                                          double d) const;
+
+  // How many of 'observed' a robot at 'pose' explains (a mapped object of the observed class
+  // lies where the pose puts it, as for the hypotheses' agreement).
+  int Agreeing(const std::vector<ObservedObject>& observed, const Pose2& pose) const;
+
+  const PreLocalizationOptions& options() const { return options_; }
+
+ private:
+  struct IndexedPair {
+    double distance;
+    int a;  // indices into objects_
+    int b;
+  };
+  // An observed object matched to a mapped one: (observed index, index into objects_).
+  using Match = std::pair<int, int>;
+
+  // The class ids of observed objects (-1: a class the map does not have). Classes are numbered
+  // in name order, so that a pair's classes in id order are in name order.
+  std::vector<int> ClassesOf(const std::vector<ObservedObject>& observed) const;
+  // Calls visit(a, b) for every mapped pair (a of class_a, b of class_b; indices into objects_)
+  // whose distance satisfies the retrieval tolerance for the observed distance d.
+  template <typename Visit>
+  void ForEachPair(int class_a, int class_b, double d, Visit&& visit) const;
+  // Hypotheses from observed objects i and j seen as mapped objects a and b.
+  void AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j, int a, int b,
+                         std::vector<PoseCandidate>* out) const;
+  bool InFreeSpace(const Eigen::Vector2d& point) const;
+  // Merges coinciding candidates (the best first) and keeps max_hypotheses.
+  std::vector<PoseCandidate> BestDistinct(std::vector<PoseCandidate> candidates) const;
+  // The observed objects a robot at 'pose' explains, each matched to one mapped object.
+  void MatchAgreeing(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
+                     const Pose2& pose, std::vector<Match>* matched) const;
+  // Least-squares pose over the matches (see PreLocalizationOptions::refine).
+  void Refine(const std::vector<ObservedObject>& observed, std::span<const Match> matched,
+              Pose2* pose) const;
+  // Agreement and refinement of every candidate; drops those agreeing with fewer than
+  // 'min_agreeing' objects, then rates the rest by the laser and drops what it rules out.
+  void Rate(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
+            const std::function<double(const Pose2&)>& laser_score, double min_laser_score,
+            int min_agreeing, std::vector<PoseCandidate>* candidates) const;
+
+  std::vector<semantic::SemanticObject> objects_;
+  std::map<std::string, int> class_id_;
+  std::vector<std::vector<int>> objects_of_class_;  // by class id: indices into objects_
+  // Per object: the largest distance from its centre to its outline (a bound on the centre's
+  // depth behind any surface seen) and the mean over directions (the depth behind a surface
+  // seen from an unknown side).
+  std::vector<double> outline_radius_;
+  std::vector<double> mean_behind_;
+  // Mapped pairs by classes (a, b), a <= b, at a * classes + b; sorted by distance.
+  std::vector<std::vector<IndexedPair>> pairs_;
+  mapping::MapImage occupancy_;
+  cv::Mat clearance_;  // CV_32F metres to the nearest non-free cell (0 on it), row = cell y
+  PreLocalizationOptions options_;
+};
+
+}  // namespace semchain::localization

@@ -1,0 +1,190 @@
+#include "localization/prelocalization.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/angles.h"
+
+namespace semchain::localization {
+namespace {
+
+TEST(IntersectCirclesTest, TwoPointsTangentDisjointConcentric) {
+  Eigen::Vector2d p[2];
+  // 3-4-5: circles around (0, 0) r 5 and (6, 0) r 5 meet at (3, ±4).
+  ASSERT_EQ(IntersectCircles({0, 0}, 5, {6, 0}, 5, 0.0, p), 2);
+  EXPECT_NEAR(p[0].x(), 3.0, 1e-12);
+  EXPECT_NEAR(std::abs(p[0].y()), 4.0, 1e-12);
+  EXPECT_NEAR(p[1].y(), -p[0].y(), 1e-12);
+  // Externally tangent.
+  ASSERT_EQ(IntersectCircles({0, 0}, 2, {5, 0}, 3, 0.0, p), 1);
+  EXPECT_NEAR((p[0] - Eigen::Vector2d(2, 0)).norm(), 0.0, 1e-9);
+  // Internally tangent.
+  ASSERT_EQ(IntersectCircles({0, 0}, 5, {2, 0}, 3, 0.0, p), 1);
+  EXPECT_NEAR((p[0] - Eigen::Vector2d(5, 0)).norm(), 0.0, 1e-9);
+  // Disjoint: apart, one inside the other, concentric.
+  EXPECT_EQ(IntersectCircles({0, 0}, 1, {5, 0}, 1, 0.0, p), 0);
+  EXPECT_EQ(IntersectCircles({0, 0}, 5, {1, 0}, 1, 0.0, p), 0);
+  EXPECT_EQ(IntersectCircles({1, 1}, 2, {1, 1}, 2, 0.5, p), 0);
+  // Apart by less than the slack: the point between them.
+  ASSERT_EQ(IntersectCircles({0, 0}, 2, {5, 0}, 2.9, 0.2, p), 1);
+  EXPECT_NEAR(p[0].x(), 2.05, 1e-9);
+}
+
+semantic::SemanticObject Square(int id, const std::string& class_name, double x, double y,
+                                double half) {
+  semantic::SemanticObject object;
+  object.id = id;
+  object.class_name = class_name;
+  object.center = {x, y};
+  object.footprint = {
+      {x + half, y + half}, {x - half, y + half}, {x - half, y - half}, {x + half, y - half}};
+  return object;
+}
+
+// A free 10 m × 6 m room.
+mapping::MapImage FreeRoom() {
+  mapping::MapImage map;
+  map.resolution = 0.05;
+  map.width = 200;
+  map.height = 120;
+  map.cells.assign(static_cast<std::size_t>(map.width * map.height), 0);
+  for (int x = 0; x < map.width; ++x) {
+    map.cells[static_cast<std::size_t>(x)] = 100;
+    map.cells[static_cast<std::size_t>((map.height - 1) * map.width + x)] = 100;
+  }
+  return map;
+}
+
+TEST(CenterBehindSurfaceTest, DistanceToTheOutline) {
+  const semantic::SemanticObject box = Square(0, "cabinet", 1.0, 1.0, 0.2);
+  EXPECT_NEAR(CenterBehindSurface(box, {1.0, 0.0}), 0.2, 1e-12);
+  EXPECT_NEAR(CenterBehindSurface(box, Eigen::Vector2d(1.0, 1.0).normalized()),
+              0.2 * std::sqrt(2.0), 1e-12);
+}
+
+TEST(PreLocalizerTest, RetrievalToleranceEdges) {
+  semantic::SemanticMap map;
+  map.objects = {Square(0, "cabinet", 1, 1, 0.1), Square(1, "bucket", 3, 1, 0.1)};  // D = 2
+  PreLocalizationOptions options;
+  options.distance_tolerance = 0.1;
+  const PreLocalizer localizer(map, FreeRoom(), options);
+  // (1 − α) D < d < (1 + α) D: 1.8 < d < 2.2, strictly.
+  EXPECT_EQ(localizer.RetrievePairs("cabinet", "bucket", 2.0).size(), 1u);
+  EXPECT_EQ(localizer.RetrievePairs("cabinet", "bucket", 2.19).size(), 1u);
+  EXPECT_EQ(localizer.RetrievePairs("cabinet", "bucket", 1.81).size(), 1u);
+  EXPECT_TRUE(localizer.RetrievePairs("cabinet", "bucket", 2.21).empty());
+  EXPECT_TRUE(localizer.RetrievePairs("cabinet", "bucket", 1.79).empty());
+  EXPECT_TRUE(localizer.RetrievePairs("cabinet", "door", 2.0).empty());
+  // Either order of the classes gives the pair with the ids in the asked order.
+  const auto reversed = localizer.RetrievePairs("bucket", "cabinet", 2.0);
+  ASSERT_EQ(reversed.size(), 1u);
+  EXPECT_EQ(std::get<0>(reversed[0]), 1);
+  EXPECT_EQ(std::get<1>(reversed[0]), 0);
+}
+
+// What a robot at 'pose' sees of 'object': the surface point on the ray to its centre.
+ObservedObject See(const Pose2& pose, const semantic::SemanticObject& object) {
+  const Eigen::Vector2d centre = pose.Inverse() * object.center;
+  const Eigen::Vector2d ray = centre.normalized();
+  const Eigen::Vector2d world_ray = (object.center - pose.translation()).normalized();
+  ObservedObject seen;
+  seen.class_name = object.class_name;
+  seen.surface = centre - CenterBehindSurface(object, -world_ray) * ray;
+  seen.range = seen.surface.norm();
+  seen.bearing = std::atan2(seen.surface.y(), seen.surface.x());
+  return seen;
+}
+
+TEST(PreLocalizerTest, TwoObjectsGiveThePose) {
+  semantic::SemanticMap map;
+  map.objects = {Square(4, "cabinet", 3.0, 5.0, 0.2), Square(7, "bucket", 5.0, 5.2, 0.15),
+                 Square(9, "chair", 8.0, 2.0, 0.25)};
+  const PreLocalizer localizer(map, FreeRoom(), PreLocalizationOptions());
+  const Pose2 truth(4.0, 2.5, 1.4);
+  const std::vector<ObservedObject> observed = {See(truth, map.objects[0]),
+                                                See(truth, map.objects[1])};
+  const std::vector<PoseCandidate> hypotheses = localizer.Localize(observed);
+  ASSERT_FALSE(hypotheses.empty());
+  EXPECT_NEAR(hypotheses[0].pose.x, 4.0, 1e-4);
+  EXPECT_NEAR(hypotheses[0].pose.y, 2.5, 1e-4);
+  EXPECT_NEAR(hypotheses[0].pose.theta, 1.4, 1e-4);
+  EXPECT_EQ(hypotheses[0].agreeing, 2);
+  // The mirror image of the two-circle intersection (y > 5) disagrees with the bearings' order.
+  for (const PoseCandidate& h : hypotheses) EXPECT_LT(h.pose.y, 5.0);
+}
+
+TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
+  // Two rooms with the same cabinet–bucket pair; only room B also has a chair.
+  semantic::SemanticMap map;
+  map.objects = {Square(0, "cabinet", 1.0, 5.0, 0.2), Square(1, "bucket", 2.5, 5.0, 0.15),
+                 Square(2, "cabinet", 6.0, 5.0, 0.2), Square(3, "bucket", 7.5, 5.0, 0.15),
+                 Square(4, "chair", 8.5, 3.5, 0.2)};
+  const PreLocalizer localizer(map, FreeRoom(), PreLocalizationOptions());
+  const Pose2 truth(6.5, 2.5, M_PI / 2);
+  std::vector<ObservedObject> pair = {See(truth, map.objects[2]), See(truth, map.objects[3])};
+  const auto two = localizer.Localize(pair);
+  ASSERT_GE(two.size(), 2u);  // room A and room B explain the pair alike
+  // With the chair in view too, room B comes first.
+  pair.push_back(See(truth, map.objects[4]));
+  const auto three = localizer.Localize(pair);
+  ASSERT_GE(three.size(), 2u);
+  EXPECT_NEAR((three[0].pose.translation() - truth.translation()).norm(), 0.0, 1e-4);
+  EXPECT_EQ(three[0].agreeing, 3);
+  EXPECT_LT(three[1].agreeing, 3);
+  // Asked for poses explaining all three, only room B is left.
+  const auto all_three = localizer.Localize(pair, {}, nullptr, 3);
+  ASSERT_EQ(all_three.size(), 1u);
+  EXPECT_NEAR((all_three[0].pose.translation() - truth.translation()).norm(), 0.0, 1e-4);
+  // A laser score breaks ties when the objects cannot, and rules out places it does not fit.
+  const auto rated = localizer.Localize(
+      {See(truth, map.objects[2]), See(truth, map.objects[3])}, [&truth](const Pose2& pose) {
+        return 1.0 - (pose.translation() - truth.translation()).norm();
+      });
+  ASSERT_EQ(rated.size(), 1u);
+  EXPECT_NEAR((rated[0].pose.translation() - truth.translation()).norm(), 0.0, 1e-4);
+  // What a pose explains: at the truth all three objects, in room A only the look-alike pair.
+  EXPECT_EQ(localizer.Agreeing(pair, truth), 3);
+  EXPECT_EQ(localizer.Agreeing(pair, Pose2(truth.x - 5.0, truth.y, truth.theta)), 2);
+  EXPECT_EQ(localizer.Agreeing(pair, Pose2(truth.x, truth.y, truth.theta + 1.0)), 0);
+}
+
+TEST(PreLocalizerTest, SingleObjectCircleAndLaserGiveThePose) {
+  // One bucket in view; two buckets mapped. The robot is somewhere on a circle around either
+  // (the truth lies on both: it is as far from each, only the heading differs); a laser score
+  // peaked at the true pose (as a scan would be) picks the right place on the right circle.
+  semantic::SemanticMap map;
+  map.objects = {Square(0, "bucket", 3.0, 3.0, 0.15), Square(1, "bucket", 7.0, 3.0, 0.15)};
+  PreLocalizationOptions options;
+  const PreLocalizer localizer(map, FreeRoom(), options);
+  const Pose2 truth(5.0, 2.0, 0.3);
+  const std::vector<ObservedObject> observed = {See(truth, map.objects[1])};
+  const auto laser = [&truth](const Pose2& pose) {
+    const double d = (pose.translation() - truth.translation()).norm();
+    const double a = NormalizeAngle(pose.theta - truth.theta);
+    return std::exp(-d * d / (2.0 * 0.1 * 0.1) - a * a / (2.0 * 0.1 * 0.1));
+  };
+  const std::vector<PoseCandidate> hypotheses = localizer.LocalizeSingle(observed, laser);
+  ASSERT_FALSE(hypotheses.empty());
+  // The best sample lies within half a step of the truth on the circle, facing as the bearing
+  // says (the heading follows the position along the circle).
+  EXPECT_LT((hypotheses[0].pose.translation() - truth.translation()).norm(),
+            0.5 * options.single_object_step + 1e-6);
+  EXPECT_NEAR(NormalizeAngle(hypotheses[0].pose.theta - truth.theta), 0.0, 0.05);
+  // Every hypothesis sees the bucket where it was seen: range and bearing hold.
+  for (const PoseCandidate& h : hypotheses) {
+    const Eigen::Vector2d surface = h.pose * observed[0].surface;
+    const double to_centre = (surface - h.pose.translation())
+                                 .normalized()
+                                 .dot((map.objects[0].center - h.pose.translation()).normalized());
+    const double to_other = (surface - h.pose.translation())
+                                .normalized()
+                                .dot((map.objects[1].center - h.pose.translation()).normalized());
+    EXPECT_GT(std::max(to_centre, to_other), 0.999);
+  }
+  // Without a laser score nothing tells the circle's points apart: no hypotheses.
+  EXPECT_TRUE(localizer.LocalizeSingle(observed, {}).empty());
+}
+
+}  // namespace
+}  // namespace semchain::localization
