@@ -12,11 +12,8 @@
 
 #include "core/angles.h"
 #include "eval/reloc_benchmark.h"
-#include "semantic/semantic_chain.h"
-#include "sensors/detection.h"
-#include "sim/prism_silhouette.h"
-#include "sim/scene.h"
 #include "sim/world.h"
+#include "testing/truth_maps.h"
 
 namespace semchain {
 namespace {
@@ -47,49 +44,6 @@ TEST(RelocBenchmarkTest, SemanticMethodsRelocalizeInLookAlikeRooms) {
   EXPECT_LE(amcl.prelocalization_error_y_m, 0.15);
   // The scan matcher searches only around the hypotheses: about one match per trial.
   EXPECT_LE(result->methods.at("semantic-scanmatch").mean_iterations, 2.0);
-}
-
-// The maps a perfect SLAM and semantic mapping would make of 'world' (so that this test does
-// not spend its time building them): cells within half a cell of a surface occupied, the rest
-// of the walls' extent free, a margin unknown; the objects' true footprints, chained.
-struct TruthMaps {
-  mapping::MapImage occupancy;
-  semantic::SemanticMap semantic;
-};
-
-TruthMaps MapsFromTruth(const sim::World& world) {
-  constexpr double kResolution = 0.05, kMargin = 0.25;
-  Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
-  for (const auto& wall : world.walls) {
-    for (const Eigen::Vector2d& p : wall) {
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-  }
-  TruthMaps maps;
-  mapping::MapImage& map = maps.occupancy;
-  map.resolution = kResolution;
-  map.origin << low.x() - kMargin, low.y() - kMargin, 0.0;
-  map.width = static_cast<int>(std::ceil((high.x() - low.x() + 2 * kMargin) / kResolution));
-  map.height = static_cast<int>(std::ceil((high.y() - low.y() + 2 * kMargin) / kResolution));
-  const sim::Scene scene(world);
-  for (int y = 0; y < map.height; ++y) {
-    for (int x = 0; x < map.width; ++x) {
-      const Eigen::Vector2d p =
-          map.origin.head<2>() + kResolution * Eigen::Vector2d(x + 0.5, y + 0.5);
-      const bool inside = (p.array() >= low.array()).all() && (p.array() <= high.array()).all();
-      map.cells.push_back(scene.IsOccupied(p, 0.5 * kResolution) ? 100 : inside ? 0 : -1);
-    }
-  }
-  semantic::SemanticMap& objects = maps.semantic;
-  objects.classes = world.classes.empty() ? DefaultClassNames() : world.classes;
-  for (const sim::Solid& solid : world.objects) {
-    objects.objects.push_back({static_cast<int>(objects.objects.size()), solid.class_name,
-                               solid.footprint.center, sim::FootprintOutline(solid.footprint), 10,
-                               0.9});
-  }
-  semantic::BuildChainsAndNeighbours(map, semantic::ChainOptions(), {}, &objects);
-  return maps;
 }
 
 // Weighted RMS distance of the particles from their weighted mean, metres.
@@ -123,7 +77,7 @@ TEST(RelocMethodsTest, ParticleSnapshotsChangeNothingAndShrink) {
       eval::SimulateRelocTrial(*world, Pose2(2.1, 2.4, 0.0), 11, options, work);
   fs::remove_all(work);
   ASSERT_TRUE(trial.ok()) << trial.status().message();
-  const TruthMaps maps = MapsFromTruth(*world);
+  const e2e::TruthMaps maps = e2e::MapsFromTruth(*world);
   ASSERT_FALSE(maps.semantic.chains.empty());
   const localization::LocalizerMap map(maps.occupancy, maps.semantic, localization::AmclOptions(),
                                        localization::PreLocalizationOptions(),

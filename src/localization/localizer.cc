@@ -209,7 +209,12 @@ LocalizerState Localizer::state() const {
     return tracking_ ? LocalizerState::kTracking : LocalizerState::kLost;
   }
   if (!estimate_) return LocalizerState::kLost;
-  if (amcl_.Estimate().converged && !amcl_.FailureDetected()) return LocalizerState::kTracking;
+  // Localized as the failure detector sees it: the heaviest cluster holds 90 % of the weight
+  // within convergence_distance (nav2's "every particle within it" is rarely met by 2000
+  // particles under nav2's odometry noise), and it has not collapsed since.
+  if (amcl_.failure_detector().armed() && !amcl_.FailureDetected()) {
+    return LocalizerState::kTracking;
+  }
   return seeded_ ? LocalizerState::kHypothesesPending : LocalizerState::kLost;
 }
 

@@ -1,0 +1,165 @@
+// The online Localizer fed as a robot feeds it, on two_similar_rooms with maps from the truth:
+// an initial pose is tracked from the first scan; a frame waits for its scan; a robot kidnapped
+// from room A into the look-alike room B is found again after RelocalizeGlobally.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/angles.h"
+#include "eval/reloc_benchmark.h"
+#include "localization/localizer.h"
+#include "sim/world.h"
+#include "testing/truth_maps.h"
+
+namespace semchain {
+namespace {
+
+namespace fs = std::filesystem;
+using localization::LocalizationMethod;
+using localization::Localizer;
+using localization::LocalizerState;
+
+class LocalizerTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const fs::path path = fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / "two_similar_rooms.yaml";
+    Result<sim::World> world = sim::LoadWorld(path);
+    ASSERT_TRUE(world.ok()) << world.status().message();
+    world_ = new sim::World(std::move(*world));
+    const e2e::TruthMaps maps = e2e::MapsFromTruth(*world_);
+    map_ = new localization::LocalizerMap(
+        maps.occupancy, maps.semantic, localization::AmclOptions(),
+        localization::PreLocalizationOptions(), localization::ScanMatchRelocalizerOptions());
+  }
+  static void TearDownTestSuite() {
+    delete map_;
+    delete world_;
+  }
+
+  // A trial of the benchmark: one turn in place at 'start', then up to 1 m ahead.
+  static eval::RelocTrialRun Trial(const Pose2& start, std::uint64_t seed) {
+    const fs::path work =
+        fs::temp_directory_path() /
+        ("semchain_localizer_e2e_" + std::to_string(::getpid()) + "_" + std::to_string(seed));
+    eval::RelocBenchmarkOptions options;
+    options.trial_turns = 1.0;
+    Result<eval::RelocTrialRun> trial =
+        eval::SimulateRelocTrial(*world_, start, seed, options, work);
+    fs::remove_all(work);
+    EXPECT_TRUE(trial.ok()) << trial.status().message();
+    return trial.ok() ? std::move(*trial) : eval::RelocTrialRun();
+  }
+
+  static localization::LocalizerFrame Frame(const eval::RelocRunInputs& inputs, std::size_t i) {
+    const eval::RelocFrame& frame = inputs.frames[i];
+    return {frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image};
+  }
+
+  static double ErrorM(const Pose2& a, const Pose2& b) {
+    return (a.translation() - b.translation()).norm();
+  }
+  static double ErrorRad(const Pose2& a, const Pose2& b) {
+    return std::abs(NormalizeAngle(a.theta - b.theta));
+  }
+
+  static sim::World* world_;
+  static localization::LocalizerMap* map_;
+};
+
+sim::World* LocalizerTest::world_ = nullptr;
+localization::LocalizerMap* LocalizerTest::map_ = nullptr;
+
+// nav2's /initialpose: given before the first scan, it applies at that scan's odometry; the
+// filter tracks from there (laser only, no frames) to the end of the trial.
+TEST_F(LocalizerTest, InitialPoseIsTrackedFromTheFirstScan) {
+  const eval::RelocTrialRun trial = Trial(Pose2(2.1, 2.4, 0.0), 11);
+  ASSERT_FALSE(trial.inputs.scans.empty());
+  for (const LocalizationMethod method :
+       {LocalizationMethod::kAmcl, LocalizationMethod::kSemanticScanMatch}) {
+    Localizer localizer(*map_, method, localization::LocalizerOptions());
+    localizer.SetInitialPose(trial.truth.front().pose,
+                             Eigen::Vector3d(0.01, 0.01, 0.005).asDiagonal());
+    EXPECT_FALSE(localizer.pose().has_value());  // nothing before the first scan
+    for (const StampedScan& scan : trial.inputs.scans) localizer.AddScan(scan);
+    ASSERT_TRUE(localizer.pose().has_value()) << LocalizationMethodName(method);
+    EXPECT_LE(ErrorM(*localizer.pose(), trial.truth.back().pose), 0.1)
+        << LocalizationMethodName(method);
+    EXPECT_LE(ErrorRad(*localizer.pose(), trial.truth.back().pose), 0.05);
+    EXPECT_EQ(localizer.state(), LocalizerState::kTracking) << LocalizationMethodName(method);
+    EXPECT_FALSE(localizer.particles().empty());
+    EXPECT_GT(localizer.covariance().trace(), 0.0);
+  }
+}
+
+// A frame queued ahead of its time is not used before the first scan at or after its stamp.
+TEST_F(LocalizerTest, FrameWaitsForItsScan) {
+  const eval::RelocTrialRun trial = Trial(Pose2(2.1, 2.4, 0.0), 11);
+  const eval::RelocRunInputs& inputs = trial.inputs;
+  // The first frame showing two objects (pre-localization needs a pair).
+  std::size_t f = 0;
+  while (f < inputs.frames.size() && inputs.frames[f].detections.size() < 2) ++f;
+  ASSERT_LT(f, inputs.frames.size());
+  Localizer localizer(*map_, LocalizationMethod::kSemanticAmcl, localization::LocalizerOptions());
+  localizer.AddFrame(Frame(inputs, f));
+  for (const StampedScan& scan : inputs.scans) {
+    localizer.AddScan(scan);
+    if (scan.scan.timestamp + 1e-6 < inputs.frames[f].stamp) {
+      ASSERT_EQ(localizer.statistics().prelocalizations, 0) << scan.scan.timestamp;
+    } else {
+      EXPECT_EQ(localizer.statistics().prelocalizations, 1);
+      EXPECT_FALSE(localizer.hypotheses().empty());
+      // Seeded by the hypotheses (tracking at once when they are one tight Gaussian).
+      EXPECT_NE(localizer.state(), LocalizerState::kLost);
+      break;
+    }
+  }
+}
+
+// Kidnapped: tracked in room A, the robot is carried into room B (odometry does not see it).
+// After RelocalizeGlobally the localizer is lost, then finds the robot in B, not in A's
+// look-alike place.
+TEST_F(LocalizerTest, KidnappedRobotIsFoundAgainAfterGlobalRelocalization) {
+  const eval::RelocTrialRun room_a = Trial(Pose2(2.1, 2.4, 0.0), 11);
+  const eval::RelocTrialRun room_b = Trial(Pose2(8.3, 3.6, 2.0), 12);
+  ASSERT_FALSE(room_a.inputs.scans.empty());
+  ASSERT_FALSE(room_b.inputs.scans.empty());
+  Localizer localizer(*map_, LocalizationMethod::kSemanticScanMatch,
+                      localization::LocalizerOptions());
+  for (std::size_t i = 0; i < room_a.inputs.frames.size(); ++i) {
+    localizer.AddFrame(Frame(room_a.inputs, i));
+  }
+  for (const StampedScan& scan : room_a.inputs.scans) localizer.AddScan(scan);
+  ASSERT_TRUE(localizer.pose().has_value());
+  EXPECT_LE(ErrorM(*localizer.pose(), room_a.truth.back().pose), 0.25);
+  EXPECT_EQ(localizer.state(), LocalizerState::kTracking);
+
+  localizer.RelocalizeGlobally();
+  EXPECT_EQ(localizer.state(), LocalizerState::kLost);
+  EXPECT_FALSE(localizer.pose().has_value());
+
+  // Room B's recording continues A's odometry and clock (the robot was carried, not driven).
+  const StampedScan& last_a = room_a.inputs.scans.back();
+  const StampedScan& first_b = room_b.inputs.scans.front();
+  const Pose2 rebase = last_a.odometry * first_b.odometry.Inverse();
+  const double shift = last_a.scan.timestamp + 0.1 - first_b.scan.timestamp;
+  for (std::size_t i = 0; i < room_b.inputs.frames.size(); ++i) {
+    localization::LocalizerFrame frame = Frame(room_b.inputs, i);
+    frame.stamp += shift;
+    localizer.AddFrame(std::move(frame));
+  }
+  for (StampedScan scan : room_b.inputs.scans) {
+    scan.scan.timestamp += shift;
+    scan.odometry = rebase * scan.odometry;
+    scan.laser_pose = rebase * scan.laser_pose;
+    localizer.AddScan(scan);
+  }
+  ASSERT_TRUE(localizer.pose().has_value());
+  EXPECT_LE(ErrorM(*localizer.pose(), room_b.truth.back().pose), 0.25);
+  EXPECT_LE(ErrorRad(*localizer.pose(), room_b.truth.back().pose), 0.1745);
+  EXPECT_EQ(localizer.state(), LocalizerState::kTracking);
+}
+
+}  // namespace
+}  // namespace semchain
