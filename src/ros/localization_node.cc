@@ -1,0 +1,374 @@
+#include "ros/localization_node.h"
+
+#include <geometry_msgs/PoseArray.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "bow/bow_occlusion.h"
+#include "core/atomic_file.h"
+#include "core/cpu_time.h"
+#include "detection/run_detection.h"
+#include "io/detections_io.h"
+#include "ros/object_markers.h"
+#include "ros/ros_geometry.h"
+#include "ros/ros_image.h"
+#include "ros/ros_map.h"
+#include "ros/ros_scan.h"
+#include "semantic/map_folder.h"
+
+namespace semchain::ros1 {
+namespace {
+
+constexpr std::uint32_t kQueue = 10;
+
+// Mean, median, 95th percentile and maximum of 'values' as JSON.
+nlohmann::json Spread(std::vector<double> values) {
+  if (values.empty()) return nullptr;
+  std::sort(values.begin(), values.end());
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  const auto at = [&values](double q) {
+    return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5)];
+  };
+  return {{"mean", sum / static_cast<double>(values.size())},
+          {"median", at(0.5)},
+          {"p95", at(0.95)},
+          {"max", values.back()}};
+}
+
+}  // namespace
+
+Result<std::unique_ptr<LocalizationNode>> LocalizationNode::Create(::ros::NodeHandle nh,
+                                                                   ::ros::NodeHandle private_nh) {
+  Result<LocalizationNodeParameters> parameters = ReadLocalizationNodeParameters(private_nh);
+  if (!parameters.ok()) return parameters.status();
+  Result<semantic::MapFolder> folder = semantic::ReadMapFolder(parameters->map);
+  if (!folder.ok()) return folder.status();
+  auto map = std::make_unique<localization::LocalizerMap>(
+      folder->occupancy, folder->semantic, parameters->amcl, localization::PreLocalizationOptions(),
+      localization::ScanMatchRelocalizerOptions());
+  const localization::LocalizationMethod method =
+      *localization::ParseLocalizationMethod(parameters->method);
+  if (method == localization::LocalizationMethod::kSemanticAmclBow) {
+    if (parameters->vocabulary.empty()) {
+      return Status::Error("~method semantic-amcl-bow needs ~vocabulary (semchain vocab train)");
+    }
+    Result<bow::KeyframeRecognizer> recognizer =
+        bow::LoadKeyframeRecognizer(parameters->vocabulary, folder->keyframes);
+    if (!recognizer.ok()) return recognizer.status();
+    map->recognizer = std::make_shared<const bow::KeyframeRecognizer>(std::move(*recognizer));
+  }
+  std::unique_ptr<detection::YoloDetector> detector;
+  if (!parameters->detector.empty()) {
+    Result<std::unique_ptr<detection::YoloDetector>> loaded =
+        detection::LoadYoloDetector(parameters->detector, "", detection::YoloOptions());
+    if (!loaded.ok()) return loaded.status();
+    detector = std::move(*loaded);
+  }
+  std::unique_ptr<LocalizationNode> node(new LocalizationNode(
+      nh, private_nh, std::move(*parameters), std::move(map), std::move(detector)));
+  node->Start();
+  return node;
+}
+
+LocalizationNode::LocalizationNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
+                                   LocalizationNodeParameters parameters,
+                                   std::unique_ptr<localization::LocalizerMap> map,
+                                   std::unique_ptr<detection::YoloDetector> detector)
+    : nh_(nh),
+      private_nh_(private_nh),
+      parameters_(std::move(parameters)),
+      map_(std::move(map)),
+      detector_(std::move(detector)),
+      localizer_(*map_, *localization::ParseLocalizationMethod(parameters_.method),
+                 parameters_.localizer),
+      tf_listener_(tf_buffer_) {}
+
+LocalizationNode::~LocalizationNode() {
+  const Status written = WriteStats();
+  if (!written.ok()) ROS_ERROR("%s", written.message().c_str());
+}
+
+void LocalizationNode::Start() {
+  pose_publisher_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("amcl_pose", 2, true);
+  particles_publisher_ = nh_.advertise<geometry_msgs::PoseArray>("particlecloud", 2, true);
+  map_publisher_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
+  objects_publisher_ = nh_.advertise<visualization_msgs::MarkerArray>("semchain/objects", 1, true);
+  nav_msgs::OccupancyGrid grid = ToOccupancyGridMsg(map_->occupancy, parameters_.global_frame_id);
+  grid.header.stamp = ::ros::Time::now();
+  grid.info.map_load_time = grid.header.stamp;
+  map_publisher_.publish(grid);
+  PublishObjects();
+
+  scan_subscriber_ = nh_.subscribe("scan", kQueue, &LocalizationNode::OnScan, this);
+  initial_pose_subscriber_ =
+      nh_.subscribe("initialpose", 2, &LocalizationNode::OnInitialPose, this);
+  global_localization_service_ =
+      nh_.advertiseService("global_localization", &LocalizationNode::OnGlobalLocalization, this);
+  if (localization::IsSemanticMethod(localizer_.method())) {
+    camera_info_subscriber_ =
+        nh_.subscribe("camera/color/camera_info", 2, &LocalizationNode::OnCameraInfo, this);
+    if (detector_) {
+      color_subscriber_ =
+          nh_.subscribe("camera/color/image_raw", 2, &LocalizationNode::OnColorImage, this);
+      depth_subscriber_ =
+          nh_.subscribe("camera/depth/image_raw", 2, &LocalizationNode::OnDepthImage, this);
+    } else {
+      detections_subscriber_ =
+          nh_.subscribe("semchain/detections", kQueue, &LocalizationNode::OnDetections, this);
+    }
+  }
+  if (parameters_.has_initial_pose) {
+    const Eigen::Vector3d cov(parameters_.initial_cov[0], parameters_.initial_cov[1],
+                              parameters_.initial_cov[2]);
+    localizer_.SetInitialPose(Pose2(parameters_.initial_pose[0], parameters_.initial_pose[1],
+                                    parameters_.initial_pose[2]),
+                              cov.asDiagonal());
+  }
+  ROS_INFO("semchain_ros: %s on %s (%zu objects, %zu chains)", parameters_.method.c_str(),
+           parameters_.map.c_str(), map_->semantic.objects.size(), map_->semantic.chains.size());
+}
+
+std::optional<geometry_msgs::TransformStamped> LocalizationNode::LookUp(const std::string& target,
+                                                                        const std::string& source,
+                                                                        const ::ros::Time& stamp,
+                                                                        double wait) {
+  std::string error;
+  if (!tf_buffer_.canTransform(target, source, stamp, ::ros::Duration(wait), &error)) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: no transform %s -> %s at %.3f: %s", target.c_str(),
+                      source.c_str(), stamp.toSec(), error.c_str());
+    return std::nullopt;
+  }
+  return tf_buffer_.lookupTransform(target, source, stamp);
+}
+
+void LocalizationNode::OnScan(const sensor_msgs::LaserScanConstPtr& message) {
+  const ::ros::WallTime arrival = ::ros::WallTime::now();
+  const std::optional<geometry_msgs::TransformStamped> odom_from_base =
+      LookUp(parameters_.odom_frame_id, parameters_.base_frame_id, message->header.stamp,
+             parameters_.tf_wait);
+  // The laser's mounting is static: the latest transform is its transform.
+  const std::optional<geometry_msgs::TransformStamped> base_from_laser =
+      LookUp(parameters_.base_frame_id, message->header.frame_id, ::ros::Time(0), 0.0);
+  if (!odom_from_base || !base_from_laser) {
+    ++timings_.dropped_scans;
+    return;
+  }
+  const ::ros::WallTime odometry_known = ::ros::WallTime::now();
+  StampedScan scan;
+  scan.scan = FromLaserScanMsg(*message).scan;
+  scan.scan.timestamp = message->header.stamp.toSec();
+  scan.odometry = PlanarPose(ToIsometry(odom_from_base->transform));
+  scan.laser_pose = scan.odometry * PlanarPose(ToIsometry(base_from_laser->transform));
+
+  const double cpu_start = ThreadCpuSeconds();
+  const int iterations = localizer_.AddScan(scan);
+  timings_.cpu_ms.push_back(1000.0 * (ThreadCpuSeconds() - cpu_start));
+  Publish(message->header.stamp, scan.odometry, iterations > 0);
+  const ::ros::WallTime published = ::ros::WallTime::now();
+  timings_.latency_ms.push_back(1000.0 * (published - arrival).toSec());
+  timings_.processing_ms.push_back(1000.0 * (published - odometry_known).toSec());
+  NoteState();
+}
+
+void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
+                               bool filter_updated) {
+  const std::optional<Pose2>& pose = localizer_.pose();
+  if (pose) {
+    geometry_msgs::PoseWithCovarianceStamped message;
+    message.header.stamp = stamp;
+    message.header.frame_id = parameters_.global_frame_id;
+    message.pose.pose = ToPoseMsg(*pose);
+    const Eigen::Matrix3d covariance = localizer_.covariance();
+    // ROS's 6×6 (x, y, z, roll, pitch, yaw) row-major; the planar entries only.
+    const int index[3] = {0, 1, 5};
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c)
+        message.pose.covariance[6 * index[r] + index[c]] = covariance(r, c);
+    }
+    pose_publisher_.publish(message);
+
+    // map → odom such that map → odom → base_link is the pose, future-dated as amcl does so
+    // that consumers can use it until the next scan.
+    geometry_msgs::TransformStamped map_from_odom;
+    map_from_odom.header.stamp = stamp + ::ros::Duration(parameters_.transform_tolerance);
+    map_from_odom.header.frame_id = parameters_.global_frame_id;
+    map_from_odom.child_frame_id = parameters_.odom_frame_id;
+    map_from_odom.transform = ToTransformMsg(*pose * odometry.Inverse());
+    map_from_odom_ = map_from_odom;
+  }
+  if (map_from_odom_ && parameters_.tf_broadcast) {
+    map_from_odom_->header.stamp = stamp + ::ros::Duration(parameters_.transform_tolerance);
+    tf_broadcaster_.sendTransform(*map_from_odom_);
+  }
+  if (filter_updated && !localizer_.particles().empty()) {
+    geometry_msgs::PoseArray cloud;
+    cloud.header.stamp = stamp;
+    cloud.header.frame_id = parameters_.global_frame_id;
+    for (const localization::Particle& p : localizer_.particles()) {
+      cloud.poses.push_back(ToPoseMsg(p.pose));
+    }
+    particles_publisher_.publish(cloud);
+  }
+  if (localizer_.hypotheses().size() != published_hypotheses_) PublishObjects();
+}
+
+void LocalizationNode::PublishObjects() {
+  published_hypotheses_ = localizer_.hypotheses().size();
+  visualization_msgs::MarkerArray markers =
+      ObjectMarkers(map_->semantic, localizer_.hypotheses(), parameters_.global_frame_id);
+  const ::ros::Time now = ::ros::Time::now();
+  for (visualization_msgs::Marker& marker : markers.markers) marker.header.stamp = now;
+  objects_publisher_.publish(markers);
+}
+
+void LocalizationNode::NoteState() {
+  const localization::LocalizerState state = localizer_.state();
+  if (state == last_state_) return;
+  last_state_ = state;
+  if (localizer_.pose()) {
+    const Pose2& p = *localizer_.pose();
+    ROS_INFO("semchain_ros: %s at (%.2f, %.2f, %.1f deg)", localization::LocalizerStateName(state),
+             p.x, p.y, p.theta * 180.0 / M_PI);
+  } else {
+    ROS_INFO("semchain_ros: %s", localization::LocalizerStateName(state));
+  }
+}
+
+void LocalizationNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
+  if (camera_info_ && camera_info_->header.frame_id == message->header.frame_id &&
+      camera_info_->K == message->K && camera_info_->width == message->width) {
+    return;
+  }
+  camera_info_ = *message;
+  camera_.reset();
+}
+
+std::optional<MountedCamera> LocalizationNode::Camera() {
+  if (camera_) return camera_;
+  if (!camera_info_) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: detections before any camera_info; skipped");
+    return std::nullopt;
+  }
+  bool has_distortion = false;
+  Result<PinholeCamera> intrinsics = FromCameraInfoMsg(*camera_info_, &has_distortion);
+  if (!intrinsics.ok()) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", intrinsics.status().message().c_str());
+    return std::nullopt;
+  }
+  if (has_distortion) {
+    ROS_WARN_ONCE(
+        "semchain_ros: camera_info has distortion coefficients; they are not applied "
+        "(give the node rectified images)");
+  }
+  // The camera's mounting is static: the latest transform is its transform.
+  const std::optional<geometry_msgs::TransformStamped> base_from_camera =
+      LookUp(parameters_.base_frame_id, camera_info_->header.frame_id, ::ros::Time(0),
+             parameters_.tf_wait);
+  if (!base_from_camera) return std::nullopt;
+  MountedCamera camera;
+  camera.intrinsics = *intrinsics;
+  camera.robot_from_camera = ToIsometry(base_from_camera->transform);
+  camera.max_range = parameters_.camera_max_range;
+  camera_ = camera;
+  return camera_;
+}
+
+void LocalizationNode::AddFrame(double stamp, std::vector<Detection> detections,
+                                const cv::Mat& color) {
+  const std::optional<MountedCamera> camera = Camera();
+  if (!camera) return;
+  localizer_.AddFrame({stamp, std::move(detections), *camera, color, {}});
+}
+
+void LocalizationNode::OnDetections(const std_msgs::StringConstPtr& message) {
+  Result<FrameDetections> frame = ParseDetectionsRecord(message->data, "/semchain/detections");
+  if (!frame.ok()) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", frame.status().message().c_str());
+    return;
+  }
+  AddFrame(frame->stamp, std::move(frame->detections), cv::Mat());
+}
+
+void LocalizationNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
+  latest_depth_ = message;
+}
+
+void LocalizationNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
+  Result<cv::Mat> rgb = ColorFromImageMsg(*message);
+  if (!rgb.ok()) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
+    return;
+  }
+  // The aligned depth of the same moment: taken within half a frame of the colour image.
+  if (!latest_depth_ ||
+      std::abs((latest_depth_->header.stamp - message->header.stamp).toSec()) > 0.05) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: no depth image with the colour image's stamp");
+    return;
+  }
+  constexpr double kMillimetre = 0.001;
+  Result<cv::Mat> depth = DepthFromImageMsg(*latest_depth_, kMillimetre);
+  if (!depth.ok() || depth->size() != rgb->size()) {
+    ROS_WARN_THROTTLE(
+        5.0, "semchain_ros: depth image unusable (%s)",
+        depth.ok() ? "not the colour image's size" : depth.status().message().c_str());
+    return;
+  }
+  cv::Mat depth_m;
+  depth->convertTo(depth_m, CV_32FC1, kMillimetre);
+  Result<std::vector<Detection>> detections = detector_->Detect(*rgb);
+  if (!detections.ok()) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: detector: %s", detections.status().message().c_str());
+    return;
+  }
+  detection::MeasureDepths(depth_m, detection::RunDetectionOptions(), *detections);
+  AddFrame(message->header.stamp.toSec(), std::move(*detections), *rgb);
+}
+
+void LocalizationNode::OnInitialPose(
+    const geometry_msgs::PoseWithCovarianceStampedConstPtr& message) {
+  if (!message->header.frame_id.empty() &&
+      message->header.frame_id != parameters_.global_frame_id) {
+    ROS_WARN("semchain_ros: /initialpose in frame '%s', expected '%s'; ignored",
+             message->header.frame_id.c_str(), parameters_.global_frame_id.c_str());
+    return;
+  }
+  const auto& c = message->pose.covariance;  // 6 × 6 row-major (x, y, z, roll, pitch, yaw)
+  Eigen::Matrix3d covariance;
+  covariance << c[0], c[1], c[5], c[6], c[7], c[11], c[30], c[31], c[35];
+  const Pose2 pose = PlanarPose(ToIsometry(message->pose.pose));
+  localizer_.SetInitialPose(pose, covariance);
+  ROS_INFO("semchain_ros: initial pose (%.2f, %.2f, %.1f deg)", pose.x, pose.y,
+           pose.theta * 180.0 / M_PI);
+}
+
+bool LocalizationNode::OnGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  localizer_.RelocalizeGlobally();
+  map_from_odom_.reset();
+  ROS_INFO("semchain_ros: global localization requested");
+  NoteState();
+  return true;
+}
+
+Status LocalizationNode::WriteStats() const {
+  if (parameters_.stats_file.empty()) return Status::Ok();
+  const localization::LocalizerStatistics& statistics = localizer_.statistics();
+  nlohmann::json stats = {{"method", parameters_.method},
+                          {"scans", statistics.scans},
+                          {"dropped_scans", timings_.dropped_scans},
+                          {"iterations", statistics.iterations},
+                          {"prelocalizations", statistics.prelocalizations},
+                          {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
+                          {"latency_ms", Spread(timings_.latency_ms)},
+                          {"processing_ms", Spread(timings_.processing_ms)},
+                          {"state", localization::LocalizerStateName(localizer_.state())}};
+  if (localizer_.pose()) {
+    stats["pose"] = {localizer_.pose()->x, localizer_.pose()->y, localizer_.pose()->theta};
+  }
+  return WriteFileAtomically(parameters_.stats_file, stats.dump(2) + "\n");
+}
+
+}  // namespace semchain::ros1
