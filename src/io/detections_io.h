@@ -18,6 +18,14 @@ namespace semchain {
 Status WriteDetectionsJsonl(const std::filesystem::path& path,
                             const std::vector<FrameDetections>& frames);
 
+// One record of the file: the line of 'frame' (without newline) that WriteDetectionsJsonl writes.
+// Non-finite numbers are an error.
+Result<std::string> FormatDetectionsRecord(const FrameDetections& frame);
+
+// Parses one record (one line); 'where' prefixes errors ("run/detections.jsonl:7", or a bag's
+// topic and message number). Checks as ReadDetectionsJsonl.
+Result<FrameDetections> ParseDetectionsRecord(const std::string& line, const std::string& where);
+
 // Reads a detections.jsonl file; blank lines are skipped and unknown fields ignored. Every
 // field of §5.5 is required; an error names file, line and field:
 //   "run/detections.jsonl:7: detections[1].box: expected 4 numbers".
