@@ -19,6 +19,8 @@ void AddBenchCommand(CLI::App& app, int& exit_code);
 void AddPlanCommand(CLI::App& app, int& exit_code);
 void AddVocabCommand(CLI::App& app, int& exit_code);
 void AddDatasetCommand(CLI::App& app, int& exit_code);
+// `bag export|import` (bag_command.cc), only in builds with ROS 1 (SEMCHAIN_WITH_ROS).
+void AddBagCommand(CLI::App& app, int& exit_code);
 // `bench localize` (bench_localize_command.cc), registered by AddBenchCommand.
 void AddBenchLocalize(CLI::App& bench, int& exit_code);
 // `bench reloc` (bench_reloc_command.cc), registered by AddBenchCommand.

@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
   semchain::app::AddPlanCommand(app, exit_code);
   semchain::app::AddVocabCommand(app, exit_code);
   semchain::app::AddDatasetCommand(app, exit_code);
+#ifdef SEMCHAIN_WITH_ROS
+  semchain::app::AddBagCommand(app, exit_code);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
