@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages semchain needs; packages already installed are skipped.
+# --no-ros leaves out ROS 1 (then src/ros and `semchain bag` are not built).
 set -euo pipefail
 
 packages=(
@@ -8,6 +9,16 @@ packages=(
   libcli11-dev libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev zlib1g-dev
   clang-format
 )
+# ROS 1 from Debian: roscpp, rosbag, tf2 and the message headers of DESIGN.md section 5.7, and
+# the command-line tools (rosbag, rostopic, rosservice, roslaunch) to use them on a robot.
+ros_packages=(
+  ros-core-dev librosbag-dev libtf2-ros-dev libtf2-msgs-dev libsensor-msgs-dev
+  libnav-msgs-dev libgeometry-msgs-dev libvisualization-msgs-dev libstd-srvs-dev
+  python3-rosbag python3-rostopic python3-rosservice python3-roslaunch
+)
+if [ "${1:-}" != "--no-ros" ]; then
+  packages+=("${ros_packages[@]}")
+fi
 
 missing=()
 for package in "${packages[@]}"; do

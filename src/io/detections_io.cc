@@ -140,7 +140,7 @@ std::string Trim(const std::string& text) {
 
 Result<std::string> FormatDetectionsRecord(const FrameDetections& frame) {
   SEMCHAIN_RETURN_IF_ERROR(CheckFinite(frame));
-  // ordered_json keeps the field order of DESIGN.md §5.5.
+  // ordered_json keeps the field order of DESIGN.md §5.5 in the file.
   nlohmann::ordered_json detections = nlohmann::ordered_json::array();
   for (const Detection& d : frame.detections) {
     detections.push_back({{"class", d.class_name},
@@ -149,23 +149,22 @@ Result<std::string> FormatDetectionsRecord(const FrameDetections& frame) {
                           {"box", {d.box[0], d.box[1], d.box[2], d.box[3]}},
                           {"depth_m", d.depth_m}});
   }
-  const nlohmann::ordered_json record = {
+  const nlohmann::ordered_json line = {
       {"frame", frame.frame}, {"stamp", frame.stamp}, {"detections", detections}};
-  return record.dump();
+  return line.dump();
 }
 
-Result<FrameDetections> ParseDetectionsRecord(const std::string& record,
-                                              const std::string& where) {
-  return LineReader(where).Frame(record);
+Result<FrameDetections> ParseDetectionsRecord(const std::string& line, const std::string& where) {
+  return LineReader(where).Frame(line);
 }
 
 Status WriteDetectionsJsonl(const std::filesystem::path& path,
                             const std::vector<FrameDetections>& frames) {
   return WriteFileAtomically(path, [&frames, &path](std::ostream& out) {
     for (const FrameDetections& frame : frames) {
-      Result<std::string> record = FormatDetectionsRecord(frame);
-      if (!record.ok()) return record.status().WithContext(path.string());
-      out << *record << '\n';
+      Result<std::string> line = FormatDetectionsRecord(frame);
+      if (!line.ok()) return line.status().WithContext(path.string());
+      out << *line << '\n';
     }
     return Status::Ok();
   });
@@ -179,8 +178,8 @@ Result<std::vector<FrameDetections>> ReadDetectionsJsonl(const std::filesystem::
   std::string line;
   for (int line_number = 1; std::getline(in, line); ++line_number) {
     if (Trim(line).empty()) continue;
-    const LineReader reader(path.string() + ":" + std::to_string(line_number));
-    Result<FrameDetections> frame = reader.Frame(line);
+    Result<FrameDetections> frame =
+        ParseDetectionsRecord(line, path.string() + ":" + std::to_string(line_number));
     if (!frame.ok()) return frame.status();
     frames.push_back(std::move(*frame));
   }

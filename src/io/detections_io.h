@@ -18,17 +18,19 @@ namespace semchain {
 Status WriteDetectionsJsonl(const std::filesystem::path& path,
                             const std::vector<FrameDetections>& frames);
 
+// One record of the file: the line of 'frame' (without newline) that WriteDetectionsJsonl writes.
+// Non-finite numbers are an error.
+Result<std::string> FormatDetectionsRecord(const FrameDetections& frame);
+
+// Parses one record (one line); 'where' prefixes errors ("run/detections.jsonl:7", or a bag's
+// topic and message number). Checks as ReadDetectionsJsonl.
+Result<FrameDetections> ParseDetectionsRecord(const std::string& line, const std::string& where);
+
 // Reads a detections.jsonl file; blank lines are skipped and unknown fields ignored. Every
 // field of §5.5 is required; an error names file, line and field:
 //   "run/detections.jsonl:7: detections[1].box: expected 4 numbers".
 // Checks: score in [0, 1], x1 <= x2 and y1 <= y2, depth_m >= 0, all numbers finite.
 Result<std::vector<FrameDetections>> ReadDetectionsJsonl(const std::filesystem::path& path);
-
-// One record of detections.jsonl (one line, no newline), as the ROS topic /semchain/detections
-// carries it; an error for non-finite numbers.
-Result<std::string> FormatDetectionsRecord(const FrameDetections& frame);
-// Parses one record; 'where' starts its error messages ("/semchain/detections: stamp: missing").
-Result<FrameDetections> ParseDetectionsRecord(const std::string& record, const std::string& where);
 
 // Reads class names, one per line with surrounding white space trimmed; blank lines at the end
 // are ignored, a blank line before a name (it would shift the ids) or a repeated name is an error.

@@ -1,0 +1,71 @@
+#include "ros/bag_reader.h"
+
+#include <system_error>
+
+namespace semchain::ros1 {
+namespace fs = std::filesystem;
+
+Result<std::unique_ptr<BagReader>> BagReader::Open(const fs::path& path) {
+  std::error_code ignored;
+  if (!fs::is_regular_file(path, ignored))
+    return Status::Error(path.string() + ": no such bag file");
+  std::unique_ptr<BagReader> reader(new BagReader(path));
+  try {
+    reader->bag_.open(path.string(), rosbag::bagmode::Read);
+    rosbag::View view(reader->bag_);
+    for (const rosbag::ConnectionInfo* connection : view.getConnections()) {
+      TopicInfo& info = reader->topics_[connection->topic];
+      info.datatype = connection->datatype;
+      info.md5sum = connection->md5sum;
+    }
+    for (auto& [topic, info] : reader->topics_) {
+      info.messages = rosbag::View(reader->bag_, rosbag::TopicQuery(topic)).size();
+    }
+  } catch (const std::exception& error) {
+    return Status::Error(path.string() + ": not a readable ROS bag: " + error.what());
+  }
+  return reader;
+}
+
+std::string BagReader::DescribeTopics() const {
+  if (topics_.empty()) return "no topics";
+  std::string text;
+  for (const auto& [topic, info] : topics_) {
+    if (!text.empty()) text += ", ";
+    text += topic + " (" + info.datatype + ", " + std::to_string(info.messages) + " messages)";
+  }
+  return text;
+}
+
+Status BagReader::CheckTopic(const std::string& topic, const std::string& datatype,
+                             const std::string& md5sum) const {
+  const auto it = topics_.find(topic);
+  if (it == topics_.end()) {
+    return Status::Error(path_.string() + ": no topic " + topic + " (" + datatype +
+                         "); the bag has " + DescribeTopics());
+  }
+  if (it->second.md5sum != md5sum) {
+    return Status::Error(path_.string() + ": topic " + topic + " carries " + it->second.datatype +
+                         ", expected " + datatype);
+  }
+  return Status::Ok();
+}
+
+std::size_t BagReader::MessageCount(const std::vector<std::string>& topics) const {
+  std::size_t count = 0;
+  for (const std::string& topic : topics) {
+    const auto it = topics_.find(topic);
+    if (it != topics_.end()) count += it->second.messages;
+  }
+  return count;
+}
+
+std::vector<std::string> BagReader::Present(const std::vector<std::string>& topics) const {
+  std::vector<std::string> present;
+  for (const std::string& topic : topics) {
+    if (Has(topic)) present.push_back(topic);
+  }
+  return present;
+}
+
+}  // namespace semchain::ros1
