@@ -14,9 +14,9 @@
 #include "apps/command.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
+#include "eval/log_localization_trials.h"
 #include "io/carmen.h"
 #include "localization/localization_map.h"
-#include "eval/log_localization_trials.h"
 #include "mapping/odometry_perturbation.h"
 #include "mapping/slam_pipeline.h"
 
@@ -175,8 +175,8 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   }
   const std::vector<StampedScan>& trial_scans = options.perturb_odometry ? perturbed_scans : *scans;
   spdlog::info("bench localize: building the map from {} corrected poses", scans->size());
-  const mapping::MapImage map = eval::MapFromCorrectedPoses(*scans, options.map_resolution,
-                                                                    options.map_max_range_meters);
+  const mapping::MapImage map =
+      eval::MapFromCorrectedPoses(*scans, options.map_resolution, options.map_max_range_meters);
   const localization::LocalizationMap check(map, options.amcl.laser_likelihood_max_dist);
   if (check.free_cells().empty()) {
     return ReportError(Status::Error(args.log + ": the map built from the log has no free cells"));

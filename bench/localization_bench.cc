@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <memory>
 
+#include "eval/log_localization_trials.h"
 #include "io/carmen.h"
 #include "localization/amcl.h"
-#include "eval/log_localization_trials.h"
 #include "localization/scan_match_relocalizer.h"
 #include "mapping/slam_pipeline.h"
 #include "mapping/testing/synthetic_map.h"

@@ -139,14 +139,15 @@ class TrialRunner {
   bool timed_;
 };
 
-LogTrial RunAmclTrial(const std::vector<StampedScan>& scans, const localization::LocalizationMap& map,
-                      const TrialRunner& runner, const LogTrialOptions& options, int t,
-                      const Span& span) {
+LogTrial RunAmclTrial(const std::vector<StampedScan>& scans,
+                      const localization::LocalizationMap& map, const TrialRunner& runner,
+                      const LogTrialOptions& options, int t, const Span& span) {
   LogTrial trial;
   trial.trial = t;
   trial.start_scan = span.start;
   const double cpu_start = ProcessCpuSeconds();
-  localization::Amcl amcl(map, options.amcl, MakeRng(options.seed, 1 + static_cast<std::uint64_t>(t)));
+  localization::Amcl amcl(map, options.amcl,
+                          MakeRng(options.seed, 1 + static_cast<std::uint64_t>(t)));
   amcl.InitializeGlobal();
   std::vector<std::pair<int, Error>> history;
   for (int i = span.start; i <= span.end; ++i) {
@@ -162,8 +163,9 @@ LogTrial RunAmclTrial(const std::vector<StampedScan>& scans, const localization:
 }
 
 LogTrial RunScanMatchTrial(const std::vector<StampedScan>& scans,
-                           const localization::ScanMatchRelocalizer& relocalizer, const TrialRunner& runner,
-                           const LogTrialOptions& options, int t, const Span& span) {
+                           const localization::ScanMatchRelocalizer& relocalizer,
+                           const TrialRunner& runner, const LogTrialOptions& options, int t,
+                           const Span& span) {
   LogTrial trial;
   trial.trial = t;
   trial.start_scan = span.start;
@@ -180,7 +182,8 @@ LogTrial RunScanMatchTrial(const std::vector<StampedScan>& scans,
     }
     last = s.odometry;
     ++attempts;
-    const localization::RelocalizationResult result = relocalizer.RelocalizeGlobal(s.scan, s.LaserOffset());
+    const localization::RelocalizationResult result =
+        relocalizer.RelocalizeGlobal(s.scan, s.LaserOffset());
     cpu += result.cpu_seconds;
     if (!result.success) continue;
     history.emplace_back(i, ErrorOf(result.pose, runner.Truth(i)));
@@ -306,7 +309,8 @@ std::vector<LogTrial> RunLogTrials(const std::vector<StampedScan>& scans,
   const std::vector<Span> spans = runner.Spans();
   std::vector<LogTrial> trials;
   if (options.method == "amcl") {
-    const localization::LocalizationMap localization_map(map, options.amcl.laser_likelihood_max_dist);
+    const localization::LocalizationMap localization_map(map,
+                                                         options.amcl.laser_likelihood_max_dist);
     for (int t = 0; t < options.trials; ++t) {
       trials.push_back(RunAmclTrial(scans, localization_map, runner, options, t, spans[t]));
       if (progress) progress(t + 1);
