@@ -141,7 +141,10 @@ int RunSlamCommand(const SlamArgs& args) {
   ProgressBar bar("slam", 2 * scans->size());
   const auto start = std::chrono::steady_clock::now();
   std::function<void(const mapping::SlamStep&)> observe;
-  if (semantic) observe = [&semantic](const mapping::SlamStep& step) { semantic->Observe(step); };
+  if (semantic) {
+    semantic->StartPreparing();
+    observe = [&semantic](const mapping::SlamStep& step) { semantic->Observe(step); };
+  }
   const mapping::SlamResult result = mapping::RunSlam(
       *scans, *options, [&bar](std::size_t done) { bar.Update(done); }, observe);
   bar.Finish();

@@ -35,6 +35,7 @@ nlohmann::json TimingJson(const semantic::LiveSemanticResult& result, double sec
           {"reprojection_seconds", s.reprojection_seconds},
           {"max_reprojection_ms", 1e3 * s.max_reprojection_seconds},
           {"snapshot_seconds", result.snapshot_seconds},
+          {"prepare_seconds", result.prepare_seconds},
           {"semantic_seconds", seconds}};
 }
 
@@ -60,11 +61,20 @@ std::string GrowthJson(const semantic::LiveSemanticResult& result, const std::st
                       {"live_objects", sample.objects},
                       {"final_objects_seen", seen}});
   }
+  // The object count frame by frame: the final objects by their first sighting.
+  std::vector<double> stamps = result.first_seen_stamp;
+  std::sort(stamps.begin(), stamps.end());
+  nlohmann::json sightings = nlohmann::json::array();
+  int count = 0;
+  for (const double stamp : stamps) {
+    if (stamp >= 0.0) sightings.push_back({{"stamp", stamp}, {"objects", ++count}});
+  }
   const nlohmann::json json = {{"version", 1},
                                {"run", run},
                                {"frames", result.mapping.frames},
                                {"skipped_frames", result.skipped_frames},
                                {"objects", objects},
+                               {"count_by_first_sighting", sightings},
                                {"growth", growth},
                                {"timing", TimingJson(result, seconds)}};
   return json.dump(2) + "\n";
@@ -93,7 +103,13 @@ Result<std::unique_ptr<SlamSemantic>> SlamSemantic::Open(const SlamSemanticArgs&
   return std::unique_ptr<SlamSemantic>(new SlamSemantic(args, std::move(*live)));
 }
 
+void SlamSemantic::StartPreparing() {
+  semantic::LiveSemanticRun* live = live_.get();
+  prepared_ = std::async(std::launch::async, [live] { return live->Prepare(); });
+}
+
 void SlamSemantic::Observe(const mapping::SlamStep& step) {
+  if (prepared_.valid()) status_ = prepared_.get();
   if (!status_.ok()) return;
   const double stamp = (*step.scans)[step.scan].scan.timestamp;
   if (!step.processed && live_->next_stamp() > stamp) return;
@@ -108,6 +124,7 @@ void SlamSemantic::Observe(const mapping::SlamStep& step) {
 
 Result<semantic::LiveSemanticResult> SlamSemantic::Finish(
     const std::vector<StampedPose>& trajectory, const mapping::MapImage& map) {
+  if (prepared_.valid()) status_ = prepared_.get();
   if (!status_.ok()) return status_;
   const auto start = std::chrono::steady_clock::now();
   Result<semantic::LiveSemanticResult> result = live_->Finish(trajectory, map);

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 
@@ -25,6 +26,10 @@ class SlamSemantic {
   static Result<std::unique_ptr<SlamSemantic>> Open(const SlamSemanticArgs& args,
                                                     double resolution);
 
+  // Starts reading the run's depth frames on another thread (LiveSemanticRun::Prepare): SLAM
+  // first computes its laser odometry, which leaves a core free.
+  void StartPreparing();
+
   // Feeds SLAM's progress to the semantic mapper (RunSlam's 'observe'); the first error stops
   // it and is returned by Finish.
   void Observe(const mapping::SlamStep& step);
@@ -42,6 +47,7 @@ class SlamSemantic {
 
   SlamSemanticArgs args_;
   std::unique_ptr<semantic::LiveSemanticRun> live_;
+  std::future<Status> prepared_;
   Status status_ = Status::Ok();
   double seconds_ = 0.0;  // spent in the semantic mapping during SLAM
 };

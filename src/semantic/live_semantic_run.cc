@@ -105,12 +105,30 @@ Status LiveSemanticRun::FeedUpTo(double stamp, const std::vector<StampedPose>& t
       ++skipped_;
       continue;
     }
-    Result<cv::Mat> depth = ReadFrameDepth(run_dir_, run_, frame);
-    if (!depth.ok()) return depth.status();
-    mapper_.AddFrame(frame, *pose, *depth);
+    if (index >= prepared_.size() || !prepared_[index]) {
+      Result<cv::Mat> depth = ReadFrameDepth(run_dir_, run_, frame);
+      if (!depth.ok()) return depth.status();
+      mapper_.AddFrame(frame, *pose, *depth);
+    } else {
+      mapper_.AddEvidence(frame, std::move(*prepared_[index]), *pose);
+      prepared_[index].reset();
+    }
     mapped_.push_back(static_cast<int>(index));
     last_stamp_ = frame.stamp;
   }
+  return Status::Ok();
+}
+
+Status LiveSemanticRun::Prepare() {
+  const auto start = std::chrono::steady_clock::now();
+  prepared_.resize(run_.frames.size());
+  for (std::size_t i = next_; i < run_.frames.size(); ++i) {
+    Result<cv::Mat> depth = ReadFrameDepth(run_dir_, run_, run_.frames[i]);
+    if (!depth.ok()) return depth.status();
+    prepared_[i] = mapper_.ComputeEvidence(run_.frames[i], *depth);
+  }
+  prepare_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return Status::Ok();
 }
 
@@ -169,6 +187,7 @@ Result<LiveSemanticResult> LiveSemanticRun::Finish(const std::vector<StampedPose
   result.statistics = mapper_.statistics();
   result.skipped_frames = skipped_;
   result.snapshot_seconds = snapshot_seconds_;
+  result.prepare_seconds = prepare_seconds_;
   return result;
 }
 

@@ -33,6 +33,11 @@ bool IsNestedDuplicate(const Detection& detection, const std::vector<Detection>&
   return false;
 }
 
+void SortUnique(std::vector<Eigen::Vector2i>& cells) {
+  std::sort(cells.begin(), cells.end(), CellKey());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
 int ClassIndex(const std::vector<std::string>& classes, const std::string& name) {
   const auto it = std::find(classes.begin(), classes.end(), name);
   return it == classes.end() ? -1 : static_cast<int>(it - classes.begin());
@@ -114,26 +119,23 @@ PosedEvidence PoseEvidence(const RobotEvidence& evidence, const Pose2& pose,
                            [](const CellHit& a, const CellHit& b) { return a.cell == b.cell; }),
                hits.end());
   }
-  // Free space, and the surfaces seen in columns where no box of a class was reported.
-  std::map<Eigen::Vector2i, bool, CellKey> free;
-  std::vector<std::map<Eigen::Vector2i, bool, CellKey>> undetected(grid.undetected.size());
+  // Free space, and the surfaces seen in columns where no box of a class was reported; each
+  // cell once, in row order (sorted vectors: a map per cell costs more than the rest).
+  std::vector<Eigen::Vector2i>& free = grid.free_cells;
   for (const RobotRay& robot : evidence.rays) {
     const FreeRay ray = PoseRay(robot.ray, pose);
-    for (const Eigen::Vector2i& cell : CellsOnSegment(lattice, ray.from, ray.to)) free[cell] = true;
+    const std::vector<Eigen::Vector2i> cells = CellsOnSegment(lattice, ray.from, ray.to);
+    free.insert(free.end(), cells.begin(), cells.end());
     const Eigen::Vector2i surface = lattice.CellOf(ray.surface);
-    for (std::size_t c = 0; c < undetected.size() && c < robot.undetected.size(); ++c) {
-      if (robot.undetected[c]) undetected[c][surface] = true;
+    for (std::size_t c = 0; c < grid.undetected.size() && c < robot.undetected.size(); ++c) {
+      if (robot.undetected[c]) grid.undetected[c].push_back(surface);
     }
   }
-  for (const auto& [cell, unused] : free) {
-    grid.free_cells.push_back(cell);
-    Extend(cell, &posed);
-  }
-  for (std::size_t c = 0; c < undetected.size(); ++c) {
-    for (const auto& [cell, unused] : undetected[c]) {
-      grid.undetected[c].push_back(cell);
-      Extend(cell, &posed);
-    }
+  SortUnique(free);
+  for (const Eigen::Vector2i& cell : free) Extend(cell, &posed);
+  for (std::vector<Eigen::Vector2i>& cells : grid.undetected) {
+    SortUnique(cells);
+    for (const Eigen::Vector2i& cell : cells) Extend(cell, &posed);
   }
   return posed;
 }

@@ -72,13 +72,23 @@ void SemanticMapper::Apply(FrameRecord& frame, const Pose2& pose, PosedEvidence 
   frame.high = posed.high;
 }
 
+RobotEvidence SemanticMapper::ComputeEvidence(const FrameDetections& frame,
+                                              const cv::Mat& depth_m) const {
+  return ComputeRobotEvidence(frame, depth_m, classes_, camera_, options_);
+}
+
 int SemanticMapper::AddFrame(const FrameDetections& frame, const Pose2& pose,
                              const cv::Mat& depth_m) {
+  return AddEvidence(frame, ComputeEvidence(frame, depth_m), pose);
+}
+
+int SemanticMapper::AddEvidence(const FrameDetections& frame, RobotEvidence evidence,
+                                const Pose2& pose) {
   const auto start = std::chrono::steady_clock::now();
   FrameRecord record;
   record.name = frame.frame;
   record.stamp = frame.stamp;
-  record.evidence = ComputeRobotEvidence(frame, depth_m, classes_, camera_, options_);
+  record.evidence = std::move(evidence);
   Apply(record, pose, Pose(record, pose));
   frames_.push_back(std::move(record));
   statistics_.frame_seconds.push_back(SecondsSince(start));
@@ -169,13 +179,15 @@ void SemanticMapper::Rebuild(const std::vector<std::size_t>& moved, const std::v
   }
 }
 
-SemanticMappingResult SemanticMapper::Snapshot(const mapping::MapImage& occupancy) const {
-  const GridGeometry geometry = GeometryOf(occupancy);
-  const SemanticGrid grid = grid_.Crop(geometry);
-  const Eigen::Vector2i offset = grid_.LatticeOffsetOf(geometry);
-  // The detections with cells on this map, in frame order.
+// The detections with cells on a map, in frame order, and where each came from.
+struct SemanticMapper::Observations {
   std::vector<DetectionObservation> observations;
   std::vector<KeyframeDetection> sources;
+};
+
+SemanticMapper::Observations SemanticMapper::ObservationsOn(const GridGeometry& geometry) const {
+  const Eigen::Vector2i offset = grid_.LatticeOffsetOf(geometry);
+  Observations on;
   for (std::size_t f = 0; f < frames_.size(); ++f) {
     const FrameRecord& frame = frames_[f];
     for (std::size_t d = 0; d < frame.evidence.detections.size(); ++d) {
@@ -186,10 +198,27 @@ SemanticMappingResult SemanticMapper::Snapshot(const mapping::MapImage& occupanc
         if (geometry.Contains(cell - offset)) observation.cells.push_back(cell - offset);
       }
       if (observation.cells.empty()) continue;
-      observations.push_back(std::move(observation));
-      sources.push_back({static_cast<int>(f), &detection.detection, -1});
+      on.observations.push_back(std::move(observation));
+      on.sources.push_back({static_cast<int>(f), &detection.detection, -1});
     }
   }
+  return on;
+}
+
+int SemanticMapper::CountObjects(const mapping::MapImage& occupancy) const {
+  const GridGeometry geometry = GeometryOf(occupancy);
+  const Observations on = ObservationsOn(geometry);
+  return static_cast<int>(ExtractObjects(grid_.Crop(geometry), on.observations, classes_, options_,
+                                         mapping::MapCellMask(occupancy, mapping::CellState::kFree))
+                              .objects.size());
+}
+
+SemanticMappingResult SemanticMapper::Snapshot(const mapping::MapImage& occupancy) const {
+  const GridGeometry geometry = GeometryOf(occupancy);
+  const SemanticGrid grid = grid_.Crop(geometry);
+  Observations on = ObservationsOn(geometry);
+  const std::vector<DetectionObservation>& observations = on.observations;
+  std::vector<KeyframeDetection>& sources = on.sources;
   const ExtractedObjects extracted =
       ExtractObjects(grid, observations, classes_, options_,
                      mapping::MapCellMask(occupancy, mapping::CellState::kFree));

@@ -50,7 +50,7 @@ struct SemanticMapperOptions {
 
 // Cost of the mapper over a run.
 struct SemanticMapperStatistics {
-  std::vector<double> frame_seconds;  // AddFrame, per frame
+  std::vector<double> frame_seconds;  // per frame: posing its evidence and updating the grid
   int reprojections = 0;              // Repose calls that moved something
   int incremental_reprojections = 0;  // of which rebuilt only the touched cells
   int reprojected_frames = 0;         // frames re-posed, summed over the reprojections
@@ -72,6 +72,10 @@ class SemanticMapper {
   // One frame seen from robot pose 'pose'; 'depth_m' is CV_32FC1 in metres (0 = none) and of
   // the camera's size. Returns the frame's index.
   int AddFrame(const FrameDetections& frame, const Pose2& pose, const cv::Mat& depth_m);
+  // What AddFrame does with the depth image, which needs no pose (so it can be done ahead,
+  // e.g. while SLAM runs); AddEvidence then puts it on the grid.
+  RobotEvidence ComputeEvidence(const FrameDetections& frame, const cv::Mat& depth_m) const;
+  int AddEvidence(const FrameDetections& frame, RobotEvidence evidence, const Pose2& pose);
 
   // The frames' poses now ('poses[i]' for frame i; fewer poses leave the later frames alone).
   // Frames that moved beyond the tolerance (any move when 'exact') are re-projected; returns
@@ -81,6 +85,10 @@ class SemanticMapper {
   // The semantic map, keyframes and counts on 'occupancy' (a map on the lattice's grid: its
   // free space cleans the objects, its regions order the chains).
   SemanticMappingResult Snapshot(const mapping::MapImage& occupancy) const;
+
+  // The number of objects on 'occupancy' now (the extraction of Snapshot without the chains
+  // and keyframes).
+  int CountObjects(const mapping::MapImage& occupancy) const;
 
   int frame_count() const { return static_cast<int>(frames_.size()); }
   // The pose frame 'i' is on the grid with.
@@ -102,6 +110,8 @@ class SemanticMapper {
     Eigen::Vector2i high = Eigen::Vector2i::Constant(-1);
   };
 
+  struct Observations;
+  Observations ObservationsOn(const GridGeometry& geometry) const;
   PosedEvidence Pose(const FrameRecord& frame, const Pose2& pose) const;
   void Apply(FrameRecord& frame, const Pose2& pose, PosedEvidence posed);
   bool Moved(const FrameRecord& frame, const Pose2& pose, bool exact) const;
