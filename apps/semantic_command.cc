@@ -13,19 +13,12 @@
 #include <string>
 
 #include "apps/command.h"
-#include "apps/map_grey.h"
-#include "apps/semantic_drawing.h"
+#include "apps/semantic_outputs.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
-#include "detection/run_detection.h"
-#include "detection/yolo_detector.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
-#include "semantic/keyframes.h"
-#include "semantic/semantic_chain.h"
-#include "semantic/semantic_map_io.h"
 #include "semantic/semantic_run.h"
-#include "sim/world_drawing.h"
 
 namespace semchain::app {
 namespace {
@@ -38,55 +31,8 @@ struct SemanticArgs {
   std::string poses;
   std::string out;
   double scale = 50.0;
-  std::string detector;  // a YOLOv8-format ONNX model instead of RUN/detections.jsonl
-  std::string classes;
-  std::string detector_input = "320x256";
+  DetectorArgs detector;  // a YOLOv8-format ONNX model instead of RUN/detections.jsonl
 };
-
-// The detections of the run's frames by the model of --detector.
-Result<std::vector<FrameDetections>> DetectWithModel(const SemanticArgs& args) {
-  detection::YoloOptions options;
-  SEMCHAIN_RETURN_IF_ERROR(detection::ParseInputSize(args.detector_input, &options));
-  std::string invalid;
-  if (!options.Validate(&invalid)) return Status::Error("--detector-input: " + invalid);
-  Result<std::unique_ptr<detection::YoloDetector>> detector =
-      detection::LoadYoloDetector(args.detector, args.classes, options);
-  if (!detector.ok()) return detector.status();
-  detection::RunDetectionOptions run_options;
-  run_options.show_progress = true;
-  return detection::DetectRunFrames(**detector, args.run, run_options);
-}
-
-// The grey map with the free cells of odd regions a shade darker, so that the regions the
-// chains are built on can be told apart.
-cv::Mat MapWithRegions(const mapping::MapImage& map, const semantic::RegionMap& regions) {
-  cv::Mat grey = MapToGrey(map);
-  for (int y = 0; y < map.height; ++y) {
-    for (int x = 0; x < map.width; ++x) {
-      if (map.At(x, y) == 0 && regions.labels.at<int>(y, x) % 2 == 1) {
-        grey.at<std::uint8_t>(map.height - 1 - y, x) = 232;
-      }
-    }
-  }
-  return grey;
-}
-
-Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
-                        double scale, const fs::path& path) {
-  sim::Bounds bounds;
-  const Eigen::Vector2d origin = map.origin.head<2>();
-  bounds.Add(origin);
-  bounds.Add(origin + map.resolution * Eigen::Vector2d(map.width, map.height));
-  sim::DrawingOptions options;
-  options.pixels_per_meter = scale;
-  Result<sim::TopDownCanvas> canvas = sim::TopDownCanvas::Create(bounds, options);
-  if (!canvas.ok()) return canvas.status();
-  const semantic::RegionMap regions =
-      semantic::SegmentRegions(map, semantic::SemanticMapOptions().chain);
-  sim::DrawGreyImage(MapWithRegions(map, regions), origin, map.resolution, *canvas);
-  DrawSemanticMap(semantic, *canvas);
-  return sim::WritePng(canvas->Compose(), path);
-}
 
 Status RunSemantic(const SemanticArgs& args) {
   const fs::path map_dir(args.map);
@@ -104,8 +50,8 @@ Status RunSemantic(const SemanticArgs& args) {
 
   semantic::SemanticRunInputs inputs;
   inputs.run_dir = args.run;
-  if (!args.detector.empty()) {
-    Result<std::vector<FrameDetections>> detections = DetectWithModel(args);
+  if (!args.detector.model.empty()) {
+    Result<std::vector<FrameDetections>> detections = DetectWithModel(args.detector, args.run);
     if (!detections.ok()) return detections.status();
     inputs.detections = std::move(*detections);
   }
@@ -127,19 +73,9 @@ Status RunSemantic(const SemanticArgs& args) {
   if (fs::weakly_canonical(out, error) != fs::weakly_canonical(map_dir, error)) {
     SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(out / "map.yaml", *map));
   }
-  semantic::KeyframeDatabase keyframes{fs::absolute(args.run).lexically_normal().string(),
-                                       result->keyframes};
-  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteKeyframes(out / "keyframes.json", keyframes));
-  SEMCHAIN_RETURN_IF_ERROR(WriteSemanticPng(*map, result->map, args.scale, out / "semantic.png"));
-  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteSemanticJson(out / "semantic.json", result->map));
-  std::size_t links = 0;
-  for (const semantic::SemanticChain& chain : result->map.chains) links += chain.links.size();
-  std::printf(
-      "%d frames, %d detections -> %zu objects, %zu chains (%zu links), %zu neighbour "
-      "links, %zu keyframes\nwrote %s\n",
-      result->frames, result->detections, result->map.objects.size(), result->map.chains.size(),
-      links, result->map.neighbours.size(), result->keyframes.size(),
-      (out / "semantic.json").string().c_str());
+  SEMCHAIN_RETURN_IF_ERROR(WriteSemanticOutputs(out, *map, *result, args.run, args.scale));
+  std::printf("%s\nwrote %s\n", SemanticSummary(*result).c_str(),
+              (out / "semantic.json").string().c_str());
   return Status::Ok();
 }
 
@@ -159,12 +95,12 @@ void AddSemanticCommand(CLI::App& app, int& exit_code) {
                       "Trajectory posing the frames (default: MAP/trajectory.txt)");
   command->add_option("--out", args->out, "Output directory (usually the map directory)")
       ->required();
-  command->add_option("--detector", args->detector,
+  command->add_option("--detector", args->detector.model,
                       "YOLOv8-format ONNX model to run on the frames instead of reading "
                       "RUN/detections.jsonl (class names from M.names beside it)");
-  command->add_option("--classes", args->classes, "Class-names file of --detector");
+  command->add_option("--classes", args->detector.classes, "Class-names file of --detector");
   command
-      ->add_option("--detector-input", args->detector_input,
+      ->add_option("--detector-input", args->detector.input,
                    "Network input WIDTHxHEIGHT of --detector (multiples of 32)")
       ->capture_default_str();
   command->add_option("--scale", args->scale, "Pixels per metre of semantic.png")

@@ -3,13 +3,21 @@
 // (map_server), MAP/map.png, MAP/trajectory.txt (a pose for every scan) and MAP/slam.json.
 // With --depth RUN the run's depth frames are fused in (seed 004, DESIGN.md §3.3): map.* is
 // then the fused map, map_lidar.* the lidar-only one and map_depth.* the depth-only one.
+// With --semantic RUN the semantic map grows while SLAM runs (one pass, DESIGN.md §1): also
+// MAP/semantic.json, keyframes.json, semantic.png (what `semantic` writes on the final
+// trajectory, equal to it) and semantic_growth.json (first sighting of each object, object
+// count over time, per-frame and re-projection costs).
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cstdio>
+#include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "apps/command.h"
+#include "apps/slam_semantic.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "io/carmen.h"
@@ -33,6 +41,7 @@ struct SlamArgs {
   std::optional<int> seed;
   std::optional<int> threads;
   std::optional<int> max_scans;
+  SlamSemanticArgs semantic;
 };
 
 Result<mapping::SlamOptions> BuildOptions(const SlamArgs& args) {
@@ -117,6 +126,13 @@ int RunSlamCommand(const SlamArgs& args) {
     if (!loaded.ok()) return ReportError(loaded.status());
     depth_run = std::move(*loaded);
   }
+  std::unique_ptr<SlamSemantic> semantic;
+  if (!args.semantic.run.empty()) {
+    Result<std::unique_ptr<SlamSemantic>> opened =
+        SlamSemantic::Open(args.semantic, options->rbpf.grid.resolution_meters);
+    if (!opened.ok()) return ReportError(opened.status());
+    semantic = std::move(*opened);
+  }
   const Status writable = EnsureWritableDirectory(args.out);
   if (!writable.ok()) return ReportError(writable);
   spdlog::info("slam: {} scans, {} particles, annealing {}, genetic resampling {}", scans->size(),
@@ -124,8 +140,13 @@ int RunSlamCommand(const SlamArgs& args) {
                options->rbpf.genetic.enabled ? "on" : "off");
   ProgressBar bar("slam", 2 * scans->size());
   const auto start = std::chrono::steady_clock::now();
-  const mapping::SlamResult result =
-      mapping::RunSlam(*scans, *options, [&bar](std::size_t done) { bar.Update(done); });
+  std::function<void(const mapping::SlamStep&)> observe;
+  if (semantic) {
+    semantic->StartPreparing();
+    observe = [&semantic](const mapping::SlamStep& step) { semantic->Observe(step); };
+  }
+  const mapping::SlamResult result = mapping::RunSlam(
+      *scans, *options, [&bar](std::size_t done) { bar.Update(done); }, observe);
   bar.Finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -140,9 +161,23 @@ int RunSlamCommand(const SlamArgs& args) {
     spdlog::info("slam: fused {} depth frames into the map", fused->frames);
     depth = std::move(*fused);
   }
+  // Everything is computed before anything is written; each file is written atomically.
+  std::optional<semantic::LiveSemanticResult> live;
+  const mapping::MapImage map = mapping::GridToMapImage(depth ? depth->fused : result.map);
+  if (semantic) {
+    Result<semantic::LiveSemanticResult> finished = semantic->Finish(result.trajectory, map);
+    if (!finished.ok()) return ReportError(finished.status());
+    live = std::move(*finished);
+  }
   const Status written =
       WriteOutputs(args.out, result, depth, StatisticsJson(result, *options, seconds));
   if (!written.ok()) return ReportError(written);
+  if (live) {
+    const Status semantic_written = semantic->Write(args.out, map, *live);
+    if (!semantic_written.ok()) return ReportError(semantic_written);
+    std::printf("%s\nwrote %s\n", SemanticSummary(live->mapping).c_str(),
+                (std::filesystem::path(args.out) / "semantic.json").string().c_str());
+  }
   spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",
                result.statistics.processed, result.localized, scans->size(), seconds);
   return 0;
@@ -174,6 +209,22 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
   command->add_option("--depth", args->depth_run,
                       "Run folder whose depth frames are fused into the map (seed 004): "
                       "camera.yaml, detections.jsonl, frames/*_depth.png");
+  CLI::Option* semantic =
+      command->add_option("--semantic", args->semantic.run,
+                          "Run folder whose frames are mapped semantically while SLAM runs "
+                          "(camera.yaml, detections.jsonl, frames/): also writes semantic.json, "
+                          "keyframes.json, semantic.png and semantic_growth.json");
+  command
+      ->add_option("--detector", args->semantic.detector.model,
+                   "With --semantic: YOLOv8-format ONNX model run on the frames instead of "
+                   "RUN/detections.jsonl")
+      ->needs(semantic);
+  command->add_option("--classes", args->semantic.detector.classes,
+                      "Class-names file of --detector");
+  command->add_option("--detector-input", args->semantic.detector.input,
+                      "Network input WIDTHxHEIGHT of --detector (multiples of 32)");
+  command->add_option("--scale", args->semantic.scale, "Pixels per metre of semantic.png")
+      ->check(CLI::Range(1.0, 1000.0));
   command->add_option("--max-scans", args->max_scans, "Use only the first N scans of the log")
       ->check(CLI::PositiveNumber);
   command->callback([args, &exit_code] { exit_code = RunSlamCommand(*args); });

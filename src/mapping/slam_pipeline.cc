@@ -10,15 +10,15 @@
 namespace semchain::mapping {
 namespace {
 
-// The pose of every scan from the best particle's trajectory (interpolated odometry between
-// its processed scans).
-std::vector<Pose2> InterpolatedPoses(const std::vector<StampedScan>& scans, const Particle& best,
-                                     std::vector<int>* processed) {
+// The pose of each of the first 'count' scans from the best particle's trajectory
+// (interpolated odometry between its processed scans).
+std::vector<Pose2> InterpolatedPoses(const std::vector<StampedScan>& scans, std::size_t count,
+                                     const Particle& best, std::vector<int>* processed) {
   std::vector<Pose2> odometry;
   std::vector<double> timestamps;
-  for (const StampedScan& s : scans) {
-    odometry.push_back(s.odometry);
-    timestamps.push_back(s.scan.timestamp);
+  for (std::size_t i = 0; i < count; ++i) {
+    odometry.push_back(scans[i].odometry);
+    timestamps.push_back(scans[i].scan.timestamp);
   }
   std::vector<std::pair<int, Pose2>> corrected;
   for (const TrajectoryNode* node : Unroll(best.trajectory)) {
@@ -55,6 +55,17 @@ int LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans
 
 }  // namespace
 
+std::vector<StampedPose> CurrentTrajectory(const std::vector<StampedScan>& scans, std::size_t count,
+                                           const RbpfSlam& slam) {
+  SEMCHAIN_CHECK(count >= 1 && count <= scans.size());
+  std::vector<int> processed;
+  const std::vector<Pose2> poses = InterpolatedPoses(scans, count, slam.BestParticle(), &processed);
+  std::vector<StampedPose> trajectory;
+  trajectory.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) trajectory.push_back({scans[i].scan.timestamp, poses[i]});
+  return trajectory;
+}
+
 bool SlamOptions::Validate(std::string* error) const {
   if (!rbpf.Validate(error)) return false;
   if (!laser_odometry.Validate(error)) {
@@ -86,7 +97,8 @@ Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std:
 }
 
 SlamResult RunSlam(const std::vector<StampedScan>& raw_scans, const SlamOptions& options,
-                   const std::function<void(std::size_t)>& progress) {
+                   const std::function<void(std::size_t)>& progress,
+                   const std::function<void(const SlamStep&)>& observe) {
   SEMCHAIN_CHECK(!raw_scans.empty());
   SlamResult result;
   std::vector<PreparedScan> prepared;
@@ -113,12 +125,14 @@ SlamResult RunSlam(const std::vector<StampedScan>& raw_scans, const SlamOptions&
   result.laser_odometry_seconds = elapsed();
   RbpfSlam slam(options.rbpf);
   for (std::size_t i = 0; i < scans.size(); ++i) {
-    slam.AddScan(scans[i], static_cast<int>(i));
+    const bool processed = slam.AddScan(scans[i], static_cast<int>(i));
+    if (observe) observe({i, processed, &slam, &scans});
     if (progress) progress(i + 1);
   }
   result.statistics = slam.statistics();
   result.filter_seconds = elapsed();
-  std::vector<Pose2> poses = InterpolatedPoses(scans, slam.BestParticle(), &result.processed);
+  std::vector<Pose2> poses =
+      InterpolatedPoses(scans, scans.size(), slam.BestParticle(), &result.processed);
   result.map = *slam.BestParticle().map;
   if (options.every_scan.method == "localize") {
     auto tick = [&](std::size_t) {

@@ -42,9 +42,25 @@ struct SlamResult {
 // beam counts that change within the log, non-increasing timestamps are fine (kept as is).
 Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std::string& source);
 
+// What a caller sees of the filter after each scan, while SLAM runs (live semantic mapping).
+struct SlamStep {
+  std::size_t scan = 0;    // index of the scan just added
+  bool processed = false;  // the filter updated on it (the best particle may have changed)
+  const RbpfSlam* slam = nullptr;
+  const std::vector<StampedScan>* scans = nullptr;  // the odometry the filter uses
+};
+
+// The best particle's trajectory over the first 'count' scans of 'scans' (count ≥ 1): its
+// poses at the scans it processed, odometry re-anchored on them in between (as the final
+// trajectory is made before the every-scan pass).
+std::vector<StampedPose> CurrentTrajectory(const std::vector<StampedScan>& scans, std::size_t count,
+                                           const RbpfSlam& slam);
+
 // Runs SLAM on 'scans' (at least one). 'progress' (may be empty) is called with the number of
-// scans done, out of scans.size() for the filter and as much again for the final passes.
+// scans done, out of scans.size() for the filter and as much again for the final passes;
+// 'observe' (may be empty) after each scan of the filter.
 SlamResult RunSlam(const std::vector<StampedScan>& scans, const SlamOptions& options,
-                   const std::function<void(std::size_t)>& progress = {});
+                   const std::function<void(std::size_t)>& progress = {},
+                   const std::function<void(const SlamStep&)>& observe = {});
 
 }  // namespace semchain::mapping

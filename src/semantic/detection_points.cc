@@ -67,12 +67,19 @@ std::vector<FreeRay> FreeSpaceRays(const cv::Mat& depth_m, const MountedCamera& 
     const Eigen::Vector2d direction = (nearest_point - camera_robot.head<2>()) / nearest;
     const Eigen::Vector2d end =
         camera_robot.head<2>() + direction * std::max(0.0, nearest - options.surface_margin);
-    const auto world = [&robot_pose](const Eigen::Vector2d& p) {
-      return RobotToWorld(robot_pose, Eigen::Vector3d(p.x(), p.y(), 0.0)).head<2>().eval();
-    };
-    rays.push_back({u, origin, world(end), world(nearest_point)});
+    rays.push_back({u, origin, PosePoint(end, robot_pose), PosePoint(nearest_point, robot_pose)});
   }
   return rays;
+}
+
+Eigen::Vector2d PosePoint(const Eigen::Vector2d& point, const Pose2& robot_pose) {
+  // The z of the point does not enter x and y: a rotation about z.
+  return RobotToWorld(robot_pose, Eigen::Vector3d(point.x(), point.y(), 0.0)).head<2>();
+}
+
+FreeRay PoseRay(const FreeRay& ray, const Pose2& robot_pose) {
+  return {ray.column, PosePoint(ray.from, robot_pose), PosePoint(ray.to, robot_pose),
+          PosePoint(ray.surface, robot_pose)};
 }
 
 }  // namespace semchain::semantic

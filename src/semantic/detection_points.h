@@ -37,4 +37,11 @@ struct FreeRay {
 std::vector<FreeRay> FreeSpaceRays(const cv::Mat& depth_m, const MountedCamera& camera,
                                    const Pose2& robot_pose, const FreeSpaceOptions& options);
 
+// 'ray' (in the robot frame) seen from 'robot_pose': FreeSpaceRays(..., robot_pose, ...) is
+// FreeSpaceRays(..., Pose2(), ...) moved by this, to the last bit, so that evidence kept in
+// the robot frame can be re-posed when SLAM corrects the trajectory.
+FreeRay PoseRay(const FreeRay& ray, const Pose2& robot_pose);
+// The same for a point of DetectionWorldPoints (its x and y).
+Eigen::Vector2d PosePoint(const Eigen::Vector2d& point, const Pose2& robot_pose);
+
 }  // namespace semchain::semantic

@@ -64,12 +64,39 @@ TEST(SemanticGridTest, UndetectedSurfacesFadeAndValuesAreClamped) {
   EXPECT_GE(grid.LogOdds(2, cell), before);
 }
 
-TEST(SemanticGridTest, SegmentCellsAreClippedToTheGrid) {
+// A segment's cells do not depend on the extent of the grid (it grows with the SLAM map).
+TEST(SemanticGridTest, SegmentCellsAreNotClippedToTheGrid) {
   const std::vector<Eigen::Vector2i> cells =
       CellsOnSegment(kGeometry, Eigen::Vector2d(0.05, 0.05), Eigen::Vector2d(5.0, 0.05));
-  ASSERT_EQ(cells.size(), 20u);
+  ASSERT_EQ(cells.size(), 51u);  // the grid is 20 cells wide
   EXPECT_EQ(cells.front(), Eigen::Vector2i(0, 0));
-  EXPECT_EQ(cells.back(), Eigen::Vector2i(19, 0));
+  EXPECT_EQ(cells.back(), Eigen::Vector2i(50, 0));
+}
+
+// Grown, the grid keeps its cells' values and numbers, and a crop back to the first extent
+// is the grid that never grew.
+TEST(SemanticGridTest, GrowAndCropKeepTheCells) {
+  SemanticGrid fixed(kGeometry, 3, SemanticGridOptions());
+  SemanticGrid growing(kGeometry, 3, SemanticGridOptions());
+  FrameEvidence evidence;
+  evidence.hits = {{}, {{Eigen::Vector2i(4, 5), Eigen::Vector2d(0.23, 0.27)}}, {}};
+  evidence.free_cells = {Eigen::Vector2i(6, 5), Eigen::Vector2i(-3, 2)};
+  fixed.Update(evidence);
+  growing.GrowToInclude(Eigen::Vector2i(-3, 2), Eigen::Vector2i(6, 5), 4);
+  EXPECT_TRUE(growing.Contains(Eigen::Vector2i(-3, 2)));
+  growing.Update(evidence);
+  EXPECT_LT(growing.LogOdds(0, Eigen::Vector2i(-3, 2)), 0.0f);
+  const SemanticGrid cropped = growing.Crop(kGeometry);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(cv::norm(cropped.log_odds(c), fixed.log_odds(c), cv::NORM_INF), 0.0);
+  }
+  EXPECT_EQ(cropped.MeanPoint(1, Eigen::Vector2i(4, 5)), fixed.MeanPoint(1, Eigen::Vector2i(4, 5)));
+  // Clearing the cell forgets its evidence.
+  cv::Mat mask = growing.MakeMask();
+  growing.Mark(Eigen::Vector2i(4, 5), mask);
+  growing.Clear(mask);
+  EXPECT_EQ(growing.LogOdds(1, Eigen::Vector2i(4, 5)), 0.0f);
+  EXPECT_EQ(growing.HitFrames(1, Eigen::Vector2i(4, 5)), 0);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/status.h"
+#include "io/camera_io.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
 #include "semantic/semantic_mapper.h"
@@ -28,6 +29,24 @@ struct SemanticRunInputs {
   // set here.
   std::vector<std::string> classes;
 };
+
+// A run's camera and frames, checked: camera.yaml readable, every frame's depth image present,
+// at least one detection.
+struct RunFrames {
+  CameraInfo camera;
+  std::vector<FrameDetections> frames;
+  std::vector<std::string> classes;  // as SemanticRunInputs::classes says
+  std::string source;                // where the detections come from, for messages
+};
+
+// 'detections' and 'classes' as in SemanticRunInputs.
+Result<RunFrames> LoadRunFrames(const std::filesystem::path& run_dir,
+                                const std::optional<std::vector<FrameDetections>>& detections,
+                                const std::vector<std::string>& classes);
+
+// The depth image of 'frame' in metres (CV_32FC1, the camera's size).
+Result<cv::Mat> ReadFrameDepth(const std::filesystem::path& run_dir, const RunFrames& run,
+                               const FrameDetections& frame);
 
 // Checks everything before mapping anything, so that a bad run fails fast with one message:
 // camera.yaml readable, every frame's depth image present, every frame inside the trajectory,

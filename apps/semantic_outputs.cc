@@ -1,0 +1,90 @@
+#include "apps/semantic_outputs.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "apps/map_grey.h"
+#include "apps/semantic_drawing.h"
+#include "detection/run_detection.h"
+#include "detection/yolo_detector.h"
+#include "semantic/keyframes.h"
+#include "semantic/semantic_chain.h"
+#include "semantic/semantic_map_io.h"
+#include "sim/world_drawing.h"
+
+namespace semchain::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The grey map with the free cells of odd regions a shade darker, so that the regions the
+// chains are built on can be told apart.
+cv::Mat MapWithRegions(const mapping::MapImage& map, const semantic::RegionMap& regions) {
+  cv::Mat grey = MapToGrey(map);
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      if (map.At(x, y) == 0 && regions.labels.at<int>(y, x) % 2 == 1) {
+        grey.at<std::uint8_t>(map.height - 1 - y, x) = 232;
+      }
+    }
+  }
+  return grey;
+}
+
+Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
+                        double scale, const fs::path& path) {
+  sim::Bounds bounds;
+  const Eigen::Vector2d origin = map.origin.head<2>();
+  bounds.Add(origin);
+  bounds.Add(origin + map.resolution * Eigen::Vector2d(map.width, map.height));
+  sim::DrawingOptions options;
+  options.pixels_per_meter = scale;
+  Result<sim::TopDownCanvas> canvas = sim::TopDownCanvas::Create(bounds, options);
+  if (!canvas.ok()) return canvas.status();
+  const semantic::RegionMap regions =
+      semantic::SegmentRegions(map, semantic::SemanticMapOptions().chain);
+  sim::DrawGreyImage(MapWithRegions(map, regions), origin, map.resolution, *canvas);
+  DrawSemanticMap(semantic, *canvas);
+  return sim::WritePng(canvas->Compose(), path);
+}
+
+}  // namespace
+
+Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
+                                                     const fs::path& run) {
+  detection::YoloOptions options;
+  SEMCHAIN_RETURN_IF_ERROR(detection::ParseInputSize(args.input, &options));
+  std::string invalid;
+  if (!options.Validate(&invalid)) return Status::Error("--detector-input: " + invalid);
+  Result<std::unique_ptr<detection::YoloDetector>> detector =
+      detection::LoadYoloDetector(args.model, args.classes, options);
+  if (!detector.ok()) return detector.status();
+  detection::RunDetectionOptions run_options;
+  run_options.show_progress = true;
+  return detection::DetectRunFrames(**detector, run, run_options);
+}
+
+Status WriteSemanticOutputs(const fs::path& out, const mapping::MapImage& map,
+                            const semantic::SemanticMappingResult& result, const fs::path& run,
+                            double scale) {
+  const semantic::KeyframeDatabase keyframes{fs::absolute(run).lexically_normal().string(),
+                                             result.keyframes};
+  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteKeyframes(out / "keyframes.json", keyframes));
+  SEMCHAIN_RETURN_IF_ERROR(WriteSemanticPng(map, result.map, scale, out / "semantic.png"));
+  return semantic::WriteSemanticJson(out / "semantic.json", result.map);
+}
+
+std::string SemanticSummary(const semantic::SemanticMappingResult& result) {
+  std::size_t links = 0;
+  for (const semantic::SemanticChain& chain : result.map.chains) links += chain.links.size();
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "%d frames, %d detections -> %zu objects, %zu chains (%zu links), %zu neighbour "
+                "links, %zu keyframes",
+                result.frames, result.detections, result.map.objects.size(),
+                result.map.chains.size(), links, result.map.neighbours.size(),
+                result.keyframes.size());
+  return text;
+}
+
+}  // namespace semchain::app

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "mapping/map_io.h"
+#include "semantic/semantic_mapper.h"
+#include "sensors/detection.h"
+
+// What `semantic` and `slam --semantic` share: detections by a model instead of
+// RUN/detections.jsonl, and the semantic files of a map folder.
+namespace semchain::app {
+
+struct DetectorArgs {
+  std::string model;  // a YOLOv8-format ONNX model; empty: RUN/detections.jsonl
+  std::string classes;
+  std::string input = "320x256";
+};
+
+// The detections of the run's frames by the model of 'args'.
+Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
+                                                     const std::filesystem::path& run);
+
+// Writes OUT/keyframes.json, OUT/semantic.png (over 'map', 'scale' pixels per metre) and
+// OUT/semantic.json, each atomically, semantic.json last.
+Status WriteSemanticOutputs(const std::filesystem::path& out, const mapping::MapImage& map,
+                            const semantic::SemanticMappingResult& result,
+                            const std::filesystem::path& run, double scale);
+
+// "N frames, M detections -> ... keyframes" for the console.
+std::string SemanticSummary(const semantic::SemanticMappingResult& result);
+
+}  // namespace semchain::app

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <future>
+#include <memory>
+#include <string>
+
+#include "apps/semantic_outputs.h"
+#include "core/status.h"
+#include "mapping/slam_pipeline.h"
+#include "semantic/live_semantic_run.h"
+
+// `slam --semantic RUN`: the semantic map grown while SLAM runs, one pass (DESIGN.md §1).
+namespace semchain::app {
+
+struct SlamSemanticArgs {
+  std::string run;  // empty: no semantic mapping
+  DetectorArgs detector;
+  double scale = 50.0;  // pixels per metre of semantic.png
+};
+
+class SlamSemantic {
+ public:
+  // Checks the run (and runs the detector) before SLAM starts; 'resolution' is the SLAM grid's.
+  static Result<std::unique_ptr<SlamSemantic>> Open(const SlamSemanticArgs& args,
+                                                    double resolution);
+
+  // Starts reading the run's depth frames on another thread (LiveSemanticRun::Prepare): SLAM
+  // first computes its laser odometry, which leaves a core free.
+  void StartPreparing();
+
+  // Feeds SLAM's progress to the semantic mapper (RunSlam's 'observe'); the first error stops
+  // it and is returned by Finish.
+  void Observe(const mapping::SlamStep& step);
+
+  // The semantic map on SLAM's final trajectory and map.
+  Result<semantic::LiveSemanticResult> Finish(const std::vector<StampedPose>& trajectory,
+                                              const mapping::MapImage& map);
+
+  // Writes the semantic files of MAP and OUT/semantic_growth.json, each atomically.
+  Status Write(const std::filesystem::path& out, const mapping::MapImage& map,
+               const semantic::LiveSemanticResult& result) const;
+
+ private:
+  SlamSemantic(SlamSemanticArgs args, std::unique_ptr<semantic::LiveSemanticRun> live);
+
+  SlamSemanticArgs args_;
+  std::unique_ptr<semantic::LiveSemanticRun> live_;
+  std::future<Status> prepared_;
+  Status status_ = Status::Ok();
+  double seconds_ = 0.0;  // spent in the semantic mapping during SLAM
+};
+
+}  // namespace semchain::app
