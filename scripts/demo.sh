@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The end-to-end demo on a bundled world: simulate a mapping run, build the map with SLAM and
-# fuse the depth camera into it, score it against the simulator's truth, put the detected objects
-# on the map and link them into semantic chains, plan a route S -> P1 -> P2 on the fused map,
+# The end-to-end demo on a bundled world: simulate a mapping run, build the map, fuse the depth
+# camera into it and put the detected objects on it, linked into semantic chains, in one SLAM
+# pass; score the trajectory against the simulator's truth, plan a route S -> P1 -> P2 on the fused map,
 # relocalize from a few random starts with every method (a table), draw world, run, map (with
 # objects and chains) and route as PNG, and one relocalization's particles converging.
 #   scripts/demo.sh [OUTPUT_DIR [WORLD.yaml]]   (defaults: demo/, worlds/two_similar_rooms.yaml)
@@ -19,12 +19,10 @@ step "simulate: $world -> $out/run"
 step "render the world and the run"
 "$semchain" render "$world" --out "$out/world.png"
 "$semchain" render "$out/run" --out "$out/run.png"
-step "slam + depth fusion: $out/run/log.clf and depth frames -> $out/map"
-"$semchain" slam --log "$out/run/log.clf" --out "$out/map" --seed 1 --depth "$out/run"
+step "slam + depth fusion + semantic map, one pass: $out/run -> $out/map (map, trajectory, semantic.json, keyframes.json, semantic.png, semantic_growth.json)"
+"$semchain" slam --log "$out/run/log.clf" --out "$out/map" --seed 1 --depth "$out/run" --semantic "$out/run"
 step "eval ate: SLAM trajectory against the simulator's truth"
 "$semchain" eval ate --poses "$out/map/trajectory.txt" --truth "$out/run/truth.txt" | tee "$out/ate.json"
-step "semantic: detections + depth frames, posed by SLAM -> $out/map/semantic.json (objects, chains)"
-"$semchain" semantic --run "$out/run" --map "$out/map" --out "$out/map"
 step "vocab: the world's default bag-of-words vocabulary from the run's frames -> $out/map/vocab.bin"
 "$semchain" vocab train --run "$out/run" --out "$out/map/vocab.bin" --seed 1
 step "render the map (with its semantic objects and chains)"
