@@ -31,6 +31,8 @@ cv::Mat MapWithRegions(const mapping::MapImage& map, const semantic::RegionMap& 
   return grey;
 }
 
+}  // namespace
+
 Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
                         double scale, const fs::path& path) {
   sim::Bounds bounds;
@@ -47,8 +49,6 @@ Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMa
   DrawSemanticMap(semantic, *canvas);
   return sim::WritePng(canvas->Compose(), path);
 }
-
-}  // namespace
 
 Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
                                                      const fs::path& run) {

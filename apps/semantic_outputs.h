@@ -23,6 +23,11 @@ struct DetectorArgs {
 Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
                                                      const std::filesystem::path& run);
 
+// Draws 'semantic' over 'map' ('scale' pixels per metre, the chains' regions shaded) into the
+// PNG 'path', atomically.
+Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
+                        double scale, const std::filesystem::path& path);
+
 // Writes OUT/keyframes.json, OUT/semantic.png (over 'map', 'scale' pixels per metre) and
 // OUT/semantic.json, each atomically, semantic.json last.
 Status WriteSemanticOutputs(const std::filesystem::path& out, const mapping::MapImage& map,

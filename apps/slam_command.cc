@@ -26,6 +26,7 @@
 #include "mapping/map_io.h"
 #include "mapping/slam_options_io.h"
 #include "mapping/slam_pipeline.h"
+#include "semantic/map_folder_writer.h"
 
 namespace semchain::app {
 namespace {
@@ -86,27 +87,31 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
   return json.dump(2) + "\n";
 }
 
-// Writes MAP/<stem>.yaml + .pgm and, for the main map, map.png.
-Status WriteGrid(const std::filesystem::path& out, const std::string& stem,
-                 const mapping::OccupancyGrid& grid) {
-  const mapping::MapImage image = mapping::GridToMapImage(grid);
-  SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(out / (stem + ".yaml"), image));
-  if (stem != "map") return Status::Ok();
-  return mapping::WriteMapPng(out / "map.png", image);
-}
-
-// The lidar and depth maps go first, so that map.yaml (the fused map) appearing means that
-// the others are complete.
+// The whole map folder, staged and renamed into place (semantic::WriteMapFolder): the map,
+// trajectory and semantic files, then what only the CLI writes (the lidar and depth maps,
+// map.png, slam.json, the semantic drawing and growth report).
 Status WriteOutputs(const std::filesystem::path& out, const mapping::SlamResult& result,
                     const std::optional<mapping::DepthFusionResult>& depth,
-                    const std::string& statistics) {
-  if (depth) {
-    SEMCHAIN_RETURN_IF_ERROR(WriteGrid(out, "map_lidar", result.map));
-    SEMCHAIN_RETURN_IF_ERROR(WriteGrid(out, "map_depth", depth->depth));
-  }
-  SEMCHAIN_RETURN_IF_ERROR(WriteGrid(out, "map", depth ? depth->fused : result.map));
-  SEMCHAIN_RETURN_IF_ERROR(WriteTrajectory(out / "trajectory.txt", result.trajectory));
-  return WriteFileAtomically(out / "slam.json", statistics);
+                    const std::string& statistics, const mapping::MapImage& map,
+                    const SlamSemantic* semantic,
+                    const std::optional<semantic::LiveSemanticResult>& live) {
+  std::optional<semantic::KeyframeDatabase> keyframes;
+  if (live) keyframes = semantic->Keyframes(*live);
+  const semantic::MapFolderContents contents{map, result.trajectory,
+                                             live ? &live->mapping.map : nullptr,
+                                             keyframes ? &*keyframes : nullptr};
+  return semantic::WriteMapFolder(out, contents, [&](const std::filesystem::path& dir) {
+    if (depth) {
+      SEMCHAIN_RETURN_IF_ERROR(
+          mapping::WriteMap(dir / "map_lidar.yaml", mapping::GridToMapImage(result.map)));
+      SEMCHAIN_RETURN_IF_ERROR(
+          mapping::WriteMap(dir / "map_depth.yaml", mapping::GridToMapImage(depth->depth)));
+    }
+    SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMapPng(dir / "map.png", map));
+    SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(dir / "slam.json", statistics));
+    if (live) SEMCHAIN_RETURN_IF_ERROR(semantic->WriteExtras(dir, map, *live));
+    return Status::Ok();
+  });
 }
 
 int RunSlamCommand(const SlamArgs& args) {
@@ -161,7 +166,7 @@ int RunSlamCommand(const SlamArgs& args) {
     spdlog::info("slam: fused {} depth frames into the map", fused->frames);
     depth = std::move(*fused);
   }
-  // Everything is computed before anything is written; each file is written atomically.
+  // Everything is computed before anything is written; the folder is written atomically.
   std::optional<semantic::LiveSemanticResult> live;
   const mapping::MapImage map = mapping::GridToMapImage(depth ? depth->fused : result.map);
   if (semantic) {
@@ -170,11 +175,10 @@ int RunSlamCommand(const SlamArgs& args) {
     live = std::move(*finished);
   }
   const Status written =
-      WriteOutputs(args.out, result, depth, StatisticsJson(result, *options, seconds));
+      WriteOutputs(args.out, result, depth, StatisticsJson(result, *options, seconds), map,
+                   semantic.get(), live);
   if (!written.ok()) return ReportError(written);
   if (live) {
-    const Status semantic_written = semantic->Write(args.out, map, *live);
-    if (!semantic_written.ok()) return ReportError(semantic_written);
     std::printf("%s\nwrote %s\n", SemanticSummary(live->mapping).c_str(),
                 (std::filesystem::path(args.out) / "semantic.json").string().c_str());
   }

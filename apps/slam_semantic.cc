@@ -109,7 +109,12 @@ void SlamSemantic::StartPreparing() {
 }
 
 void SlamSemantic::Observe(const mapping::SlamStep& step) {
-  if (prepared_.valid()) status_ = prepared_.get();
+  // SLAM runs while the frames are prepared: the steps until then are left to the later ones
+  // (Finish re-poses every frame on the final trajectory, so the result is the same).
+  if (prepared_.valid()) {
+    if (prepared_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    status_ = prepared_.get();
+  }
   if (!status_.ok()) return;
   const double stamp = (*step.scans)[step.scan].scan.timestamp;
   if (!step.processed && live_->next_stamp() > stamp) return;
@@ -132,9 +137,15 @@ Result<semantic::LiveSemanticResult> SlamSemantic::Finish(
   return result;
 }
 
-Status SlamSemantic::Write(const fs::path& out, const mapping::MapImage& map,
-                           const semantic::LiveSemanticResult& result) const {
-  SEMCHAIN_RETURN_IF_ERROR(WriteSemanticOutputs(out, map, result.mapping, args_.run, args_.scale));
+semantic::KeyframeDatabase SlamSemantic::Keyframes(
+    const semantic::LiveSemanticResult& result) const {
+  return {fs::absolute(args_.run).lexically_normal().string(), result.mapping.keyframes};
+}
+
+Status SlamSemantic::WriteExtras(const fs::path& out, const mapping::MapImage& map,
+                                 const semantic::LiveSemanticResult& result) const {
+  SEMCHAIN_RETURN_IF_ERROR(
+      WriteSemanticPng(map, result.mapping.map, args_.scale, out / "semantic.png"));
   const std::string run = fs::absolute(args_.run).lexically_normal().string();
   return WriteFileAtomically(out / "semantic_growth.json", GrowthJson(result, run, seconds_));
 }

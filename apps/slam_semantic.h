@@ -26,8 +26,8 @@ class SlamSemantic {
   static Result<std::unique_ptr<SlamSemantic>> Open(const SlamSemanticArgs& args,
                                                     double resolution);
 
-  // Starts reading the run's depth frames on another thread (LiveSemanticRun::Prepare): SLAM
-  // first computes its laser odometry, which leaves a core free.
+  // Starts reading the run's depth frames on another thread (LiveSemanticRun::Prepare) while
+  // SLAM starts.
   void StartPreparing();
 
   // Feeds SLAM's progress to the semantic mapper (RunSlam's 'observe'); the first error stops
@@ -38,9 +38,13 @@ class SlamSemantic {
   Result<semantic::LiveSemanticResult> Finish(const std::vector<StampedPose>& trajectory,
                                               const mapping::MapImage& map);
 
-  // Writes the semantic files of MAP and OUT/semantic_growth.json, each atomically.
-  Status Write(const std::filesystem::path& out, const mapping::MapImage& map,
-               const semantic::LiveSemanticResult& result) const;
+  // The keyframes of 'result' with the run they are in (MAP/keyframes.json).
+  semantic::KeyframeDatabase Keyframes(const semantic::LiveSemanticResult& result) const;
+
+  // Writes OUT/semantic.png and OUT/semantic_growth.json (the map folder writer writes
+  // semantic.json and keyframes.json).
+  Status WriteExtras(const std::filesystem::path& out, const mapping::MapImage& map,
+                     const semantic::LiveSemanticResult& result) const;
 
  private:
   SlamSemantic(SlamSemanticArgs args, std::unique_ptr<semantic::LiveSemanticRun> live);

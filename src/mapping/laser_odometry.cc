@@ -1,7 +1,6 @@
 #include "mapping/laser_odometry.h"
 
 #include <cmath>
-#include <deque>
 
 #include "core/check.h"
 #include "mapping/ray_casting.h"
@@ -18,11 +17,6 @@ bool LaserOdometryOptions::Validate(std::string* error) const {
 }
 
 namespace {
-
-struct Submap {
-  OccupancyGrid grid;
-  int scans = 0;
-};
 
 constexpr double kVelocityMargin = 0.05;
 
@@ -54,6 +48,53 @@ MatchResult MatchBest(const LikelihoodField& field, const MatchPoints& points,
 
 }  // namespace
 
+LaserOdometry::LaserOdometry(const LaserOdometryOptions& options,
+                             const OccupancyGridOptions& grid_options,
+                             const LikelihoodFieldOptions& field_options)
+    : options_(options),
+      grid_options_(grid_options),
+      field_options_(field_options),
+      prior_model_(options.prior) {}
+
+Pose2 LaserOdometry::Add(const StampedScan& scan, const PreparedScan& prepared) {
+  Pose2 pose = scan.odometry;
+  if (!poses_.empty()) {
+    const Pose2& last = poses_.back();
+    pose = last * last_odometry_.Between(scan.odometry);
+    const Pose2 velocity = poses_.size() >= 2 ? last * poses_.front().Between(last) : last;
+    const LikelihoodField field(submaps_.front().grid, field_options_);
+    // Hill climbing on every n-th return, the refinement on all of them.
+    const MatchPoints sparse =
+        SelectMatchPoints(prepared, options_.match_max_range_meters, options_.match_beam_step);
+    Pose2 prediction;
+    const MatchResult match =
+        MatchBest(field, sparse, pose, velocity, options_.matcher, &prediction);
+    if (match.evaluation.matched * options_.match_beam_step >= options_.min_matched_points) {
+      pose = match.pose;
+      if (options_.refinement.enabled) {
+        const PosePrior prior{prediction, prior_model_.Sigmas(last.Between(prediction))};
+        const MatchPoints all = SelectMatchPoints(prepared, options_.match_max_range_meters);
+        pose = RefineOnSurface(field, all, match.pose, options_.refinement, &prior).pose;
+      }
+    } else {
+      ++rejected_;
+    }
+  }
+  if (poses_.size() == 2) poses_.erase(poses_.begin());
+  poses_.push_back(pose);
+  last_odometry_ = scan.odometry;
+  // A new submap when the newest is half full; the oldest goes when it is full.
+  if (submaps_.empty() || submaps_.back().scans >= options_.scans_per_submap / 2) {
+    submaps_.push_back({OccupancyGrid(grid_options_), 0});
+  }
+  for (Submap& submap : submaps_) {
+    InsertScan(prepared, pose, &submap.grid);
+    ++submap.scans;
+  }
+  if (submaps_.front().scans >= options_.scans_per_submap) submaps_.pop_front();
+  return pose;
+}
+
 std::vector<Pose2> ComputeLaserOdometry(const std::vector<StampedScan>& scans,
                                         const std::vector<PreparedScan>& prepared,
                                         const LaserOdometryOptions& options,
@@ -61,47 +102,12 @@ std::vector<Pose2> ComputeLaserOdometry(const std::vector<StampedScan>& scans,
                                         const LikelihoodFieldOptions& field_options,
                                         int* rejected) {
   SEMCHAIN_CHECK(scans.size() == prepared.size());
+  LaserOdometry odometry(options, grid_options, field_options);
   std::vector<Pose2> poses;
   poses.reserve(scans.size());
-  std::deque<Submap> submaps;
-  int rejections = 0;
-  const MotionModel prior_model(options.prior);
-  for (std::size_t i = 0; i < scans.size(); ++i) {
-    Pose2 pose = scans[i].odometry;
-    if (i > 0) {
-      pose = poses.back() * scans[i - 1].odometry.Between(scans[i].odometry);
-      const Pose2 velocity =
-          i >= 2 ? poses.back() * poses[i - 2].Between(poses.back()) : poses.back();
-      const LikelihoodField field(submaps.front().grid, field_options);
-      // Hill climbing on every n-th return, the refinement on all of them.
-      const MatchPoints sparse =
-          SelectMatchPoints(prepared[i], options.match_max_range_meters, options.match_beam_step);
-      Pose2 prediction;
-      const MatchResult match =
-          MatchBest(field, sparse, pose, velocity, options.matcher, &prediction);
-      if (match.evaluation.matched * options.match_beam_step >= options.min_matched_points) {
-        pose = match.pose;
-        if (options.refinement.enabled) {
-          const PosePrior prior{prediction, prior_model.Sigmas(poses.back().Between(prediction))};
-          const MatchPoints all = SelectMatchPoints(prepared[i], options.match_max_range_meters);
-          pose = RefineOnSurface(field, all, match.pose, options.refinement, &prior).pose;
-        }
-      } else {
-        ++rejections;
-      }
-    }
-    poses.push_back(pose);
-    // A new submap when the newest is half full; the oldest goes when it is full.
-    if (submaps.empty() || submaps.back().scans >= options.scans_per_submap / 2) {
-      submaps.push_back({OccupancyGrid(grid_options), 0});
-    }
-    for (Submap& submap : submaps) {
-      InsertScan(prepared[i], pose, &submap.grid);
-      ++submap.scans;
-    }
-    if (submaps.front().scans >= options.scans_per_submap) submaps.pop_front();
-  }
-  if (rejected != nullptr) *rejected = rejections;
+  for (std::size_t i = 0; i < scans.size(); ++i)
+    poses.push_back(odometry.Add(scans[i], prepared[i]));
+  if (rejected != nullptr) *rejected = odometry.rejected();
   return poses;
 }
 

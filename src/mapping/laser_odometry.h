@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,35 @@ struct LaserOdometryOptions {
   MotionModelOptions prior{0.1, 0.1, 0.1, 0.2, 0.02, 0.02};
 
   bool Validate(std::string* error) const;
+};
+
+// The laser odometry fed one scan at a time (each scan is matched against the scans before it
+// only, so the batch and the incremental results are the same).
+class LaserOdometry {
+ public:
+  LaserOdometry(const LaserOdometryOptions& options, const OccupancyGridOptions& grid_options,
+                const LikelihoodFieldOptions& field_options);
+  LaserOdometry(const LaserOdometry&) = delete;
+  LaserOdometry& operator=(const LaserOdometry&) = delete;
+
+  // The scan-matched odometry pose of 'scan' ('prepared' is it prepared), the next in time.
+  Pose2 Add(const StampedScan& scan, const PreparedScan& prepared);
+  int rejected() const { return rejected_; }
+
+ private:
+  struct Submap {
+    OccupancyGrid grid;
+    int scans = 0;
+  };
+
+  LaserOdometryOptions options_;
+  OccupancyGridOptions grid_options_;
+  LikelihoodFieldOptions field_options_;
+  MotionModel prior_model_;
+  std::deque<Submap> submaps_;
+  std::vector<Pose2> poses_;  // the last two
+  Pose2 last_odometry_;
+  int rejected_ = 0;
 };
 
 // Returns the scan-matched odometry pose of every scan (the first scan keeps its wheel

@@ -1,0 +1,79 @@
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "io/trajectory_io.h"
+#include "mapping/laser_odometry.h"
+#include "mapping/prepared_scan.h"
+#include "mapping/rbpf_slam.h"
+#include "mapping/slam_options.h"
+
+// `semchain slam`'s SLAM fed one scan at a time (the ROS node's mapping mode; RunSlam feeds it a
+// whole log): each scan goes through the laser-odometry front end and then the RBPF, so that
+// the map and the best trajectory are known after every scan. Finish() runs the final passes
+// (a pose for every scan in the final map) as RunSlam does.
+namespace semchain::mapping {
+
+// What a caller sees of the filter after each scan, while SLAM runs (live semantic mapping).
+struct SlamStep {
+  std::size_t scan = 0;    // index of the scan just added
+  bool processed = false;  // the filter updated on it (the best particle may have changed)
+  const RbpfSlam* slam = nullptr;
+  const std::vector<StampedScan>* scans = nullptr;  // the odometry the filter uses
+};
+
+struct SlamResult {
+  OccupancyGrid map;                    // built from the final poses
+  std::vector<StampedPose> trajectory;  // one pose per scan, in log order
+  std::vector<int> processed;           // indices of the scans the RBPF processed
+  int localized = 0;                    // scans refined by scan matching in the final map
+  int laser_odometry_rejected = 0;      // scans that kept their wheel odometry increment
+  RbpfStatistics statistics;
+  // Wall time of each stage, seconds.
+  double laser_odometry_seconds = 0.0;
+  double filter_seconds = 0.0;
+  double every_scan_seconds = 0.0;
+};
+
+// The best particle's trajectory over the first 'count' scans of 'scans' (count ≥ 1): its
+// poses at the scans it processed, odometry re-anchored on them in between (as the final
+// trajectory is made before the every-scan pass).
+std::vector<StampedPose> CurrentTrajectory(const std::vector<StampedScan>& scans, std::size_t count,
+                                           const RbpfSlam& slam);
+
+class IncrementalSlam {
+ public:
+  // 'options' must be valid (SlamOptions::Validate).
+  explicit IncrementalSlam(const SlamOptions& options);
+  IncrementalSlam(const IncrementalSlam&) = delete;
+  IncrementalSlam& operator=(const IncrementalSlam&) = delete;
+
+  // Adds the next scan (its timestamp not before the last one's; the beam count of the first).
+  // The step refers to this object and is valid until the next call.
+  SlamStep AddScan(const StampedScan& scan);
+
+  std::size_t size() const { return scans_.size(); }
+  // The scans with the odometry the filter uses (the laser odometry's when enabled).
+  const std::vector<StampedScan>& scans() const { return scans_; }
+  const RbpfSlam& filter() const { return slam_; }
+  // The best particle's trajectory so far (one pose per scan; at least one scan added).
+  std::vector<StampedPose> Trajectory() const;
+
+  // The final passes on the scans added (at least one): 'progress' (may be empty) is called
+  // with scans done counting on from size(), as RunSlam reports them.
+  SlamResult Finish(const std::function<void(std::size_t)>& progress = {}) const;
+
+ private:
+  SlamOptions options_;
+  LaserOdometry laser_odometry_;
+  RbpfSlam slam_;
+  std::vector<PreparedScan> prepared_;
+  std::vector<StampedScan> scans_;
+  double laser_odometry_seconds_ = 0.0;
+  double filter_seconds_ = 0.0;
+};
+
+}  // namespace semchain::mapping
