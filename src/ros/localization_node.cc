@@ -10,34 +10,17 @@
 #include "bow/bow_occlusion.h"
 #include "core/atomic_file.h"
 #include "core/cpu_time.h"
-#include "detection/run_detection.h"
 #include "io/detections_io.h"
+#include "ros/node_inputs.h"
 #include "ros/object_markers.h"
 #include "ros/ros_geometry.h"
-#include "ros/ros_image.h"
 #include "ros/ros_map.h"
-#include "ros/ros_scan.h"
 #include "semantic/map_folder.h"
 
 namespace semchain::ros1 {
 namespace {
 
 constexpr std::uint32_t kQueue = 10;
-
-// Mean, median, 95th percentile and maximum of 'values' as JSON.
-nlohmann::json Spread(std::vector<double> values) {
-  if (values.empty()) return nullptr;
-  std::sort(values.begin(), values.end());
-  double sum = 0.0;
-  for (const double v : values) sum += v;
-  const auto at = [&values](double q) {
-    return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5)];
-  };
-  return {{"mean", sum / static_cast<double>(values.size())},
-          {"median", at(0.5)},
-          {"p95", at(0.95)},
-          {"max", values.back()}};
-}
 
 }  // namespace
 
@@ -85,7 +68,9 @@ LocalizationNode::LocalizationNode(::ros::NodeHandle nh, ::ros::NodeHandle priva
       detector_(std::move(detector)),
       localizer_(*map_, *localization::ParseLocalizationMethod(parameters_.method),
                  parameters_.localizer),
-      tf_listener_(tf_buffer_) {}
+      tf_listener_(tf_buffer_),
+      camera_(parameters_.camera_max_range),
+      rgbd_(detector_.get()) {}
 
 LocalizationNode::~LocalizationNode() {
   const Status written = WriteStats();
@@ -97,7 +82,8 @@ void LocalizationNode::Start() {
   particles_publisher_ = nh_.advertise<geometry_msgs::PoseArray>("particlecloud", 2, true);
   map_publisher_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
   objects_publisher_ = nh_.advertise<visualization_msgs::MarkerArray>("semchain/objects", 1, true);
-  nav_msgs::OccupancyGrid grid = ToOccupancyGridMsg(map_->occupancy, parameters_.global_frame_id);
+  nav_msgs::OccupancyGrid grid =
+      ToOccupancyGridMsg(map_->occupancy, parameters_.frames.global_frame_id);
   grid.header.stamp = ::ros::Time::now();
   grid.info.map_load_time = grid.header.stamp;
   map_publisher_.publish(grid);
@@ -132,42 +118,20 @@ void LocalizationNode::Start() {
            parameters_.map.c_str(), map_->semantic.objects.size(), map_->semantic.chains.size());
 }
 
-std::optional<geometry_msgs::TransformStamped> LocalizationNode::LookUp(const std::string& target,
-                                                                        const std::string& source,
-                                                                        const ::ros::Time& stamp,
-                                                                        double wait) {
-  std::string error;
-  if (!tf_buffer_.canTransform(target, source, stamp, ::ros::Duration(wait), &error)) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: no transform %s -> %s at %.3f: %s", target.c_str(),
-                      source.c_str(), stamp.toSec(), error.c_str());
-    return std::nullopt;
-  }
-  return tf_buffer_.lookupTransform(target, source, stamp);
-}
-
 void LocalizationNode::OnScan(const sensor_msgs::LaserScanConstPtr& message) {
   const ::ros::WallTime arrival = ::ros::WallTime::now();
-  const std::optional<geometry_msgs::TransformStamped> odom_from_base =
-      LookUp(parameters_.odom_frame_id, parameters_.base_frame_id, message->header.stamp,
-             parameters_.tf_wait);
-  // The laser's mounting is static: the latest transform is its transform.
-  const std::optional<geometry_msgs::TransformStamped> base_from_laser =
-      LookUp(parameters_.base_frame_id, message->header.frame_id, ::ros::Time(0), 0.0);
-  if (!odom_from_base || !base_from_laser) {
+  const std::optional<StampedScan> scan =
+      ScanWithOdometry(tf_buffer_, *message, parameters_.frames);
+  if (!scan) {
     ++timings_.dropped_scans;
     return;
   }
   const ::ros::WallTime odometry_known = ::ros::WallTime::now();
-  StampedScan scan;
-  scan.scan = FromLaserScanMsg(*message).scan;
-  scan.scan.timestamp = message->header.stamp.toSec();
-  scan.odometry = PlanarPose(ToIsometry(odom_from_base->transform));
-  scan.laser_pose = scan.odometry * PlanarPose(ToIsometry(base_from_laser->transform));
 
   const double cpu_start = ThreadCpuSeconds();
-  const int iterations = localizer_.AddScan(scan);
+  const int iterations = localizer_.AddScan(*scan);
   timings_.cpu_ms.push_back(1000.0 * (ThreadCpuSeconds() - cpu_start));
-  Publish(message->header.stamp, scan.odometry, iterations > 0);
+  Publish(message->header.stamp, scan->odometry, iterations > 0);
   const ::ros::WallTime published = ::ros::WallTime::now();
   timings_.latency_ms.push_back(1000.0 * (published - arrival).toSec());
   timings_.processing_ms.push_back(1000.0 * (published - odometry_known).toSec());
@@ -180,7 +144,7 @@ void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
   if (pose) {
     geometry_msgs::PoseWithCovarianceStamped message;
     message.header.stamp = stamp;
-    message.header.frame_id = parameters_.global_frame_id;
+    message.header.frame_id = parameters_.frames.global_frame_id;
     message.pose.pose = ToPoseMsg(*pose);
     const Eigen::Matrix3d covariance = localizer_.covariance();
     // ROS's 6×6 (x, y, z, roll, pitch, yaw) row-major; the planar entries only.
@@ -195,8 +159,8 @@ void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
     // that consumers can use it until the next scan.
     geometry_msgs::TransformStamped map_from_odom;
     map_from_odom.header.stamp = stamp + ::ros::Duration(parameters_.transform_tolerance);
-    map_from_odom.header.frame_id = parameters_.global_frame_id;
-    map_from_odom.child_frame_id = parameters_.odom_frame_id;
+    map_from_odom.header.frame_id = parameters_.frames.global_frame_id;
+    map_from_odom.child_frame_id = parameters_.frames.odom_frame_id;
     map_from_odom.transform = ToTransformMsg(*pose * odometry.Inverse());
     map_from_odom_ = map_from_odom;
   }
@@ -207,7 +171,7 @@ void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
   if (filter_updated && !localizer_.particles().empty()) {
     geometry_msgs::PoseArray cloud;
     cloud.header.stamp = stamp;
-    cloud.header.frame_id = parameters_.global_frame_id;
+    cloud.header.frame_id = parameters_.frames.global_frame_id;
     for (const localization::Particle& p : localizer_.particles()) {
       cloud.poses.push_back(ToPoseMsg(p.pose));
     }
@@ -219,7 +183,7 @@ void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
 void LocalizationNode::PublishObjects() {
   published_hypotheses_ = localizer_.hypotheses().size();
   visualization_msgs::MarkerArray markers =
-      ObjectMarkers(map_->semantic, localizer_.hypotheses(), parameters_.global_frame_id);
+      ObjectMarkers(map_->semantic, localizer_.hypotheses(), parameters_.frames.global_frame_id);
   const ::ros::Time now = ::ros::Time::now();
   for (visualization_msgs::Marker& marker : markers.markers) marker.header.stamp = now;
   objects_publisher_.publish(markers);
@@ -239,47 +203,12 @@ void LocalizationNode::NoteState() {
 }
 
 void LocalizationNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
-  if (camera_info_ && camera_info_->header.frame_id == message->header.frame_id &&
-      camera_info_->K == message->K && camera_info_->width == message->width) {
-    return;
-  }
-  camera_info_ = *message;
-  camera_.reset();
-}
-
-std::optional<MountedCamera> LocalizationNode::Camera() {
-  if (camera_) return camera_;
-  if (!camera_info_) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: detections before any camera_info; skipped");
-    return std::nullopt;
-  }
-  bool has_distortion = false;
-  Result<PinholeCamera> intrinsics = FromCameraInfoMsg(*camera_info_, &has_distortion);
-  if (!intrinsics.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", intrinsics.status().message().c_str());
-    return std::nullopt;
-  }
-  if (has_distortion) {
-    ROS_WARN_ONCE(
-        "semchain_ros: camera_info has distortion coefficients; they are not applied "
-        "(give the node rectified images)");
-  }
-  // The camera's mounting is static: the latest transform is its transform.
-  const std::optional<geometry_msgs::TransformStamped> base_from_camera =
-      LookUp(parameters_.base_frame_id, camera_info_->header.frame_id, ::ros::Time(0),
-             parameters_.tf_wait);
-  if (!base_from_camera) return std::nullopt;
-  MountedCamera camera;
-  camera.intrinsics = *intrinsics;
-  camera.robot_from_camera = ToIsometry(base_from_camera->transform);
-  camera.max_range = parameters_.camera_max_range;
-  camera_ = camera;
-  return camera_;
+  camera_.OnCameraInfo(*message);
 }
 
 void LocalizationNode::AddFrame(double stamp, std::vector<Detection> detections,
                                 const cv::Mat& color) {
-  const std::optional<MountedCamera> camera = Camera();
+  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
   if (!camera) return;
   localizer_.AddFrame({stamp, std::move(detections), *camera, color, {}});
 }
@@ -294,46 +223,20 @@ void LocalizationNode::OnDetections(const std_msgs::StringConstPtr& message) {
 }
 
 void LocalizationNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
-  latest_depth_ = message;
+  rgbd_.OnDepthImage(message);
 }
 
 void LocalizationNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
-  Result<cv::Mat> rgb = ColorFromImageMsg(*message);
-  if (!rgb.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
-    return;
-  }
-  // The aligned depth of the same moment: taken within half a frame of the colour image.
-  if (!latest_depth_ ||
-      std::abs((latest_depth_->header.stamp - message->header.stamp).toSec()) > 0.05) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: no depth image with the colour image's stamp");
-    return;
-  }
-  constexpr double kMillimetre = 0.001;
-  Result<cv::Mat> depth = DepthFromImageMsg(*latest_depth_, kMillimetre);
-  if (!depth.ok() || depth->size() != rgb->size()) {
-    ROS_WARN_THROTTLE(
-        5.0, "semchain_ros: depth image unusable (%s)",
-        depth.ok() ? "not the colour image's size" : depth.status().message().c_str());
-    return;
-  }
-  cv::Mat depth_m;
-  depth->convertTo(depth_m, CV_32FC1, kMillimetre);
-  Result<std::vector<Detection>> detections = detector_->Detect(*rgb);
-  if (!detections.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: detector: %s", detections.status().message().c_str());
-    return;
-  }
-  detection::MeasureDepths(depth_m, detection::RunDetectionOptions(), *detections);
-  AddFrame(message->header.stamp.toSec(), std::move(*detections), *rgb);
+  std::optional<RgbdDetections> frame = rgbd_.OnColorImage(*message);
+  if (frame) AddFrame(frame->stamp, std::move(frame->detections), frame->color);
 }
 
 void LocalizationNode::OnInitialPose(
     const geometry_msgs::PoseWithCovarianceStampedConstPtr& message) {
   if (!message->header.frame_id.empty() &&
-      message->header.frame_id != parameters_.global_frame_id) {
+      message->header.frame_id != parameters_.frames.global_frame_id) {
     ROS_WARN("semchain_ros: /initialpose in frame '%s', expected '%s'; ignored",
-             message->header.frame_id.c_str(), parameters_.global_frame_id.c_str());
+             message->header.frame_id.c_str(), parameters_.frames.global_frame_id.c_str());
     return;
   }
   const auto& c = message->pose.covariance;  // 6 × 6 row-major (x, y, z, roll, pitch, yaw)

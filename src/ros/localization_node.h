@@ -20,6 +20,7 @@
 #include "core/status.h"
 #include "detection/yolo_detector.h"
 #include "localization/localizer.h"
+#include "ros/node_inputs.h"
 #include "ros/node_parameters.h"
 
 // semchain_ros in localization mode: a drop-in for ROS amcl that runs a semchain Localizer.
@@ -70,12 +71,6 @@ class LocalizationNode {
   void OnInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& message);
   bool OnGlobalLocalization(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
 
-  // target_from_source at 'stamp' (waiting up to 'wait' seconds), planar or full.
-  std::optional<geometry_msgs::TransformStamped> LookUp(const std::string& target,
-                                                        const std::string& source,
-                                                        const ::ros::Time& stamp, double wait);
-  // The camera as the localizer needs it, once camera_info and its tf are known.
-  std::optional<MountedCamera> Camera();
   void AddFrame(double stamp, std::vector<Detection> detections, const cv::Mat& color);
   void Publish(const ::ros::Time& stamp, const Pose2& odometry, bool filter_updated);
   void PublishObjects();
@@ -104,9 +99,8 @@ class LocalizationNode {
   ::ros::Publisher objects_publisher_;
   ::ros::ServiceServer global_localization_service_;
 
-  std::optional<sensor_msgs::CameraInfo> camera_info_;
-  std::optional<MountedCamera> camera_;
-  sensor_msgs::ImageConstPtr latest_depth_;
+  CameraTracker camera_;
+  RgbdDetector rgbd_;
   std::optional<geometry_msgs::TransformStamped> map_from_odom_;
   localization::LocalizerState last_state_ = localization::LocalizerState::kLost;
   std::size_t published_hypotheses_ = 0;

@@ -2,33 +2,22 @@
 
 #include <cmath>
 
+#include "ros/parameter_reader.h"
+
 namespace semchain::ros1 {
 namespace {
 
-// Reads an optional parameter; a parameter of the wrong type is an error, not a silent default.
 template <typename T>
 Status Read(const ::ros::NodeHandle& nh, const std::string& name, T* value) {
-  if (!nh.hasParam(name)) return Status::Ok();
-  if (!nh.getParam(name, *value)) {
-    return Status::Error("parameter ~" + name + ": wrong type");
-  }
-  return Status::Ok();
+  return ReadParameter(nh, name, value);
 }
 
 Status ReadInt(const ::ros::NodeHandle& nh, const std::string& name, int* value) {
-  return Read(nh, name, value);
+  return ReadParameter(nh, name, value);
 }
 
-// ROS amcl's doubles also accept integers written without a decimal point.
 Status ReadDouble(const ::ros::NodeHandle& nh, const std::string& name, double* value) {
-  if (!nh.hasParam(name)) return Status::Ok();
-  if (nh.getParam(name, *value)) return Status::Ok();
-  int integer = 0;
-  if (nh.getParam(name, integer)) {
-    *value = integer;
-    return Status::Ok();
-  }
-  return Status::Error("parameter ~" + name + ": expected a number");
+  return ReadDoubleParameter(nh, name, value);
 }
 
 }  // namespace
@@ -48,11 +37,8 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "vocabulary", &p.vocabulary));
   SEMCHAIN_RETURN_IF_ERROR(ReadDouble(nh, "camera_max_range", &p.camera_max_range));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "stats_file", &p.stats_file));
-  SEMCHAIN_RETURN_IF_ERROR(Read(nh, "base_frame_id", &p.base_frame_id));
-  SEMCHAIN_RETURN_IF_ERROR(Read(nh, "odom_frame_id", &p.odom_frame_id));
-  SEMCHAIN_RETURN_IF_ERROR(Read(nh, "global_frame_id", &p.global_frame_id));
+  SEMCHAIN_RETURN_IF_ERROR(ReadNodeFrames(nh, &p.frames));
   SEMCHAIN_RETURN_IF_ERROR(ReadDouble(nh, "transform_tolerance", &p.transform_tolerance));
-  SEMCHAIN_RETURN_IF_ERROR(ReadDouble(nh, "tf_wait", &p.tf_wait));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "tf_broadcast", &p.tf_broadcast));
 
   const char* const kPoseNames[3] = {"initial_pose_x", "initial_pose_y", "initial_pose_a"};
@@ -113,9 +99,8 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "observation_memory", &p.localizer.observation_memory));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "single_object", &p.localizer.single_object));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "recheck_lock", &p.localizer.recheck_lock));
-  if (!(p.transform_tolerance >= 0.0) || !(p.tf_wait >= 0.0) || !(p.camera_max_range > 0.0)) {
-    return Status::Error(
-        "parameters ~transform_tolerance, ~tf_wait must be >= 0, ~camera_max_range > 0");
+  if (!(p.transform_tolerance >= 0.0) || !(p.camera_max_range > 0.0)) {
+    return Status::Error("parameters ~transform_tolerance must be >= 0, ~camera_max_range > 0");
   }
   return p;
 }

@@ -7,6 +7,7 @@
 #include "core/status.h"
 #include "localization/amcl_options.h"
 #include "localization/localizer.h"
+#include "ros/node_inputs.h"
 
 // The node's private parameters. Where ROS amcl has a parameter of the same meaning it has the
 // same name (min_particles, max_particles, kld_err, kld_z, odom_alpha1..4, laser_model_type,
@@ -24,11 +25,8 @@ struct LocalizationNodeParameters {
   std::string vocabulary;                     // ~vocabulary: semantic-amcl-bow's vocabulary
   double camera_max_range = 6.0;              // ~camera_max_range: depth beyond is no reading
   std::string stats_file;                     // ~stats_file: CPU and latency JSON at exit
-  std::string base_frame_id = "base_link";
-  std::string odom_frame_id = "odom";
-  std::string global_frame_id = "map";
+  NodeFrames frames;                 // ~base_frame_id, ~odom_frame_id, ~global_frame_id, ~tf_wait
   double transform_tolerance = 0.1;  // s: map → odom is future-dated by this much (as amcl)
-  double tf_wait = 0.5;              // ~tf_wait: s a scan waits for odom → base_link
   bool tf_broadcast = true;
   bool has_initial_pose = false;  // initial_pose_x/y/a given
   double initial_pose[3] = {0.0, 0.0, 0.0};

@@ -71,6 +71,45 @@ Result<std::unique_ptr<LiveSemanticRun>> LiveSemanticRun::Open(
       new LiveSemanticRun(run_dir, std::move(*run), lattice, options, std::move(warn)));
 }
 
+Result<std::unique_ptr<LiveSemanticRun>> LiveSemanticRun::Create(
+    const MountedCamera& camera, std::vector<std::string> classes, const GridGeometry& lattice,
+    const LiveSemanticOptions& options, std::function<void(const std::string&)> warn,
+    const std::string& source) {
+  std::string invalid;
+  if (!options.Validate(&invalid)) return Status::Error("invalid semantic options: " + invalid);
+  RunFrames run;
+  run.camera.camera = camera;
+  run.classes = std::move(classes);
+  run.source = source;
+  if (!warn) warn = [](const std::string&) {};
+  return std::unique_ptr<LiveSemanticRun>(
+      new LiveSemanticRun({}, std::move(run), lattice, options, std::move(warn)));
+}
+
+void LiveSemanticRun::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
+  for (const Detection& detection : frame.detections) {
+    const std::string& name = detection.class_name;
+    if (std::find(run_.classes.begin(), run_.classes.end(), name) != run_.classes.end() ||
+        std::find(warned_classes_.begin(), warned_classes_.end(), name) != warned_classes_.end()) {
+      continue;
+    }
+    warned_classes_.push_back(name);
+    warn_(run_.source + ": frame " + frame.frame + ": detection of unknown class '" + name +
+          "' (not one of the " + std::to_string(run_.classes.size()) + " classes): ignored");
+  }
+  prepared_.resize(run_.frames.size());
+  prepared_.push_back(mapper_.ComputeEvidence(frame, depth_m));
+  run_.frames.push_back(std::move(frame));
+}
+
+SemanticMappingResult LiveSemanticRun::Current(const std::vector<StampedPose>& trajectory,
+                                               const mapping::MapImage& occupancy) {
+  if (!trajectory.empty() && mapper_.frame_count() > 0) {
+    mapper_.Repose(FramePoses(trajectory), /*exact=*/true);
+  }
+  return mapper_.Snapshot(occupancy);
+}
+
 double LiveSemanticRun::next_stamp() const {
   return next_ < run_.frames.size() ? run_.frames[next_].stamp
                                     : std::numeric_limits<double>::infinity();

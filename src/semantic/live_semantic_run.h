@@ -63,6 +63,27 @@ class LiveSemanticRun {
       const std::optional<std::vector<FrameDetections>>& detections, const GridGeometry& lattice,
       const LiveSemanticOptions& options, std::function<void(const std::string&)> warn);
 
+  // A run fed frame by frame (the ROS node's mapping mode: no run folder): frames come with
+  // AddFrame; 'source' names where they come from in messages; 'classes' fixes the class order.
+  static Result<std::unique_ptr<LiveSemanticRun>> Create(
+      const MountedCamera& camera, std::vector<std::string> classes, const GridGeometry& lattice,
+      const LiveSemanticOptions& options, std::function<void(const std::string&)> warn,
+      const std::string& source);
+
+  // Appends a frame seen by the camera of Create; 'depth_m' is CV_32FC1 in metres of the
+  // camera's size. It is mapped once SLAM's trajectory reaches its stamp (Advance); a frame
+  // out of time order or before the first scan is skipped then with a warning. Detections of a
+  // class not in the classes are warned about (once per class) and ignored.
+  void AddFrame(FrameDetections frame, const cv::Mat& depth_m);
+
+  // The semantic map now: every frame mapped so far re-posed exactly on 'trajectory' (SLAM's
+  // best so far), on 'occupancy'. Frames still waiting stay queued; mapping goes on after.
+  SemanticMappingResult Current(const std::vector<StampedPose>& trajectory,
+                                const mapping::MapImage& occupancy);
+
+  int mapped_frames() const { return mapper_.frame_count(); }
+  int skipped_frames() const { return skipped_; }
+
   // Reads every frame's depth image and computes its evidence in the robot frame (no pose
   // needed), so that mapping a frame later only poses it. May run on another thread while
   // SLAM prepares its scans, but not beside the calls below.
@@ -104,6 +125,7 @@ class LiveSemanticRun {
   int skipped_ = 0;
   std::vector<GrowthSample> growth_;
   double snapshot_seconds_ = 0.0;
+  std::vector<std::string> warned_classes_;  // unknown classes warned about (AddFrame)
 };
 
 }  // namespace semchain::semantic

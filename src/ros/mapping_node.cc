@@ -1,0 +1,281 @@
+#include "ros/mapping_node.h"
+
+#include <nav_msgs/OccupancyGrid.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/cpu_time.h"
+#include "io/detections_io.h"
+#include "mapping/map_io.h"
+#include "ros/object_markers.h"
+#include "ros/ros_geometry.h"
+#include "ros/ros_map.h"
+#include "semantic/box_depth.h"
+#include "semantic/map_folder_writer.h"
+
+namespace semchain::ros1 {
+namespace {
+
+// Scans wait while the map is published or saved (a second or so): a queue as deep as a few
+// seconds of scans keeps every scan, as `semchain slam` uses every scan of a log.
+constexpr std::uint32_t kScanQueue = 200;
+constexpr std::uint32_t kFrameQueue = 50;
+
+void Warn(const std::string& line) { ROS_WARN("semchain_ros: %s", line.c_str()); }
+
+}  // namespace
+
+Result<std::unique_ptr<MappingNode>> MappingNode::Create(::ros::NodeHandle nh,
+                                                         ::ros::NodeHandle private_nh) {
+  Result<MappingNodeParameters> parameters = ReadMappingNodeParameters(private_nh);
+  if (!parameters.ok()) return parameters.status();
+  std::unique_ptr<detection::YoloDetector> detector;
+  if (!parameters->detector.empty()) {
+    Result<std::unique_ptr<detection::YoloDetector>> loaded =
+        detection::LoadYoloDetector(parameters->detector, "", detection::YoloOptions());
+    if (!loaded.ok()) return loaded.status();
+    detector = std::move(*loaded);
+  }
+  std::unique_ptr<MappingNode> node(
+      new MappingNode(nh, std::move(*parameters), std::move(detector)));
+  node->Start();
+  return node;
+}
+
+MappingNode::MappingNode(::ros::NodeHandle nh, MappingNodeParameters parameters,
+                         std::unique_ptr<detection::YoloDetector> detector)
+    : nh_(nh),
+      parameters_(std::move(parameters)),
+      detector_(std::move(detector)),
+      slam_(parameters_.slam),
+      tf_buffer_(::ros::Duration(30.0)),
+      tf_listener_(tf_buffer_),
+      camera_(parameters_.camera_max_range),
+      rgbd_(detector_.get()) {}
+
+MappingNode::~MappingNode() { Shutdown(); }
+
+void MappingNode::Start() {
+  map_publisher_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
+  objects_publisher_ = nh_.advertise<visualization_msgs::MarkerArray>("semchain/objects", 1, true);
+  scan_subscriber_ = nh_.subscribe("scan", kScanQueue, &MappingNode::OnScan, this);
+  camera_info_subscriber_ =
+      nh_.subscribe("camera/color/camera_info", 2, &MappingNode::OnCameraInfo, this);
+  if (detector_) {
+    color_subscriber_ =
+        nh_.subscribe("camera/color/image_raw", kFrameQueue, &MappingNode::OnColorImage, this);
+    depth_subscriber_ =
+        nh_.subscribe("camera/depth/image_raw", kFrameQueue, &MappingNode::OnDepthImage, this);
+  } else {
+    detections_subscriber_ =
+        nh_.subscribe("semchain/detections", kFrameQueue, &MappingNode::OnDetections, this);
+  }
+  save_service_ = nh_.advertiseService("semchain/save_map", &MappingNode::OnSaveMap, this);
+  // An unwritable ~out is said now, not after an hour of mapping; the node maps anyway (the
+  // folder may become writable, or the map be saved elsewhere by a restart).
+  const Status writable = EnsureWritableDirectory(
+      std::filesystem::absolute(parameters_.out).lexically_normal().parent_path());
+  if (!writable.ok()) {
+    ROS_ERROR("semchain_ros: ~out %s: %s; mapping anyway, saving will fail",
+              parameters_.out.c_str(), writable.message().c_str());
+  }
+  ROS_INFO("semchain_ros: mapping (%d particles, %.3f m cells) into %s",
+           parameters_.slam.rbpf.particles, parameters_.slam.rbpf.grid.resolution_meters,
+           parameters_.out.c_str());
+}
+
+bool MappingNode::Acceptable(const StampedScan& scan) const {
+  if (slam_.size() == 0) return true;
+  const StampedScan& last = slam_.scans().back();
+  if (scan.scan.timestamp < last.scan.timestamp) {
+    ROS_WARN_THROTTLE(5.0,
+                      "semchain_ros: scan at %.3f s is older than the last one (%.3f s): "
+                      "out of time order, skipped",
+                      scan.scan.timestamp, last.scan.timestamp);
+    return false;
+  }
+  if (scan.scan.size() != slam_.scans().front().scan.size()) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: scan at %.3f s has %zu beams, the first had %zu; skipped",
+                      scan.scan.timestamp, scan.scan.size(), slam_.scans().front().scan.size());
+    return false;
+  }
+  return true;
+}
+
+void MappingNode::OnScan(const sensor_msgs::LaserScanConstPtr& message) {
+  const std::optional<StampedScan> scan =
+      ScanWithOdometry(tf_buffer_, *message, parameters_.frames);
+  if (!scan) {
+    ++timings_.dropped_scans;
+    return;
+  }
+  if (!Acceptable(*scan)) {
+    ++timings_.rejected_scans;
+    return;
+  }
+  const double cpu_start = ThreadCpuSeconds();
+  Feed(*scan);
+  timings_.cpu_ms.push_back(1000.0 * (ThreadCpuSeconds() - cpu_start));
+  PublishTransform(message->header.stamp, trajectory_.back().pose, scan->odometry);
+  const double stamp = scan->scan.timestamp;
+  if (!last_map_stamp_ || stamp - *last_map_stamp_ >= parameters_.map_update_interval) {
+    PublishMap(message->header.stamp);
+    last_map_stamp_ = stamp;
+  }
+  const ::ros::WallTime now = ::ros::WallTime::now();
+  if (!first_scan_wall_) {
+    first_scan_wall_ = now;
+    timings_.first_stamp = stamp;
+  }
+  timings_.last_stamp = stamp;
+  timings_.wall_seconds = (now - *first_scan_wall_).toSec();
+}
+
+void MappingNode::Feed(const StampedScan& scan) {
+  const mapping::SlamStep step = slam_.AddScan(scan);
+  trajectory_ = slam_.Trajectory();
+  if (!semantic_) return;
+  // As `slam --semantic` does: frames wait for a pose; a filter update may move mapped ones.
+  if (!step.processed && semantic_->next_stamp() > scan.scan.timestamp) return;
+  const Status advanced = semantic_->Advance(trajectory_, step.processed, {});
+  if (!advanced.ok()) ROS_ERROR("semchain_ros: %s", advanced.message().c_str());
+}
+
+void MappingNode::PublishTransform(const ::ros::Time& stamp, const Pose2& pose,
+                                   const Pose2& odometry) {
+  geometry_msgs::TransformStamped map_from_odom;
+  // Future-dated as slam_gmapping and amcl do, so that consumers can use it until the next scan.
+  map_from_odom.header.stamp = stamp + ::ros::Duration(parameters_.transform_tolerance);
+  map_from_odom.header.frame_id = parameters_.frames.global_frame_id;
+  map_from_odom.child_frame_id = parameters_.frames.odom_frame_id;
+  map_from_odom.transform = ToTransformMsg(pose * odometry.Inverse());
+  tf_broadcaster_.sendTransform(map_from_odom);
+}
+
+void MappingNode::PublishMap(const ::ros::Time& stamp) {
+  const mapping::MapImage image = mapping::GridToMapImage(*slam_.filter().BestParticle().map);
+  nav_msgs::OccupancyGrid grid = ToOccupancyGridMsg(image, parameters_.frames.global_frame_id);
+  grid.header.stamp = stamp;
+  grid.info.map_load_time = stamp;
+  map_publisher_.publish(grid);
+  if (!semantic_ || semantic_->mapped_frames() == 0) return;
+  const semantic::SemanticMappingResult current = semantic_->Current(trajectory_, image);
+  visualization_msgs::MarkerArray markers =
+      ObjectMarkers(current.map, {}, parameters_.frames.global_frame_id);
+  for (visualization_msgs::Marker& marker : markers.markers) marker.header.stamp = stamp;
+  objects_publisher_.publish(markers);
+  if (current.map.objects.size() != published_objects_) {
+    published_objects_ = current.map.objects.size();
+    ROS_INFO("semchain_ros: %zu objects, %zu chains after %d frames", current.map.objects.size(),
+             current.map.chains.size(), semantic_->mapped_frames());
+  }
+}
+
+void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
+  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
+  if (!camera) return;
+  if (!semantic_) {
+    // The semantic grid numbers its cells on the SLAM grid's lattice (cells from the origin).
+    semantic::GridGeometry lattice;
+    lattice.resolution = parameters_.slam.rbpf.grid.resolution_meters;
+    Result<std::unique_ptr<semantic::LiveSemanticRun>> created = semantic::LiveSemanticRun::Create(
+        *camera, DefaultClassNames(), lattice, semantic::LiveSemanticOptions(), Warn,
+        detector_ ? "camera" : "/semchain/detections");
+    if (!created.ok()) {
+      ROS_ERROR_THROTTLE(5.0, "semchain_ros: %s", created.status().message().c_str());
+      return;
+    }
+    semantic_ = std::move(*created);
+  }
+  const cv::Mat depth =
+      depth_m.empty() ? semantic::DepthFromBoxes(frame.detections, camera->intrinsics) : depth_m;
+  semantic_->AddFrame(std::move(frame), depth);
+}
+
+void MappingNode::OnDetections(const std_msgs::StringConstPtr& message) {
+  Result<FrameDetections> frame = ParseDetectionsRecord(message->data, "/semchain/detections");
+  if (!frame.ok()) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", frame.status().message().c_str());
+    return;
+  }
+  AddFrame(std::move(*frame), cv::Mat());
+}
+
+void MappingNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
+  camera_.OnCameraInfo(*message);
+}
+
+void MappingNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
+  rgbd_.OnDepthImage(message);
+}
+
+void MappingNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
+  std::optional<RgbdDetections> detected = rgbd_.OnColorImage(*message);
+  if (!detected) return;
+  FrameDetections frame;
+  frame.frame = "camera/" + std::to_string(message->header.seq);
+  frame.stamp = detected->stamp;
+  frame.detections = std::move(detected->detections);
+  AddFrame(std::move(frame), detected->depth_m);
+}
+
+Status MappingNode::Save() {
+  if (slam_.size() == 0) return Status::Error("no scan yet: nothing to save");
+  const mapping::SlamResult result = slam_.Finish();
+  semantic::MapFolderContents contents;
+  contents.occupancy = mapping::GridToMapImage(result.map);
+  contents.trajectory = result.trajectory;
+  semantic::SemanticMappingResult mapped;
+  mapped.map.classes = DefaultClassNames();
+  if (semantic_) mapped = semantic_->Current(result.trajectory, contents.occupancy);
+  // No run folder holds the frames: the keyframes name none (semantic-amcl-bow needs images).
+  const semantic::KeyframeDatabase keyframes{"", mapped.keyframes};
+  contents.semantic = &mapped.map;
+  contents.keyframes = &keyframes;
+  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteMapFolder(parameters_.out, contents));
+  ROS_INFO("semchain_ros: saved %s: %zu scans, %zu objects, %zu chains", parameters_.out.c_str(),
+           result.trajectory.size(), mapped.map.objects.size(), mapped.map.chains.size());
+  return Status::Ok();
+}
+
+bool MappingNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  const Status saved = Save();
+  response.success = saved.ok();
+  response.message = saved.ok() ? parameters_.out : saved.message();
+  if (!saved.ok()) ROS_ERROR("semchain_ros: save_map: %s", saved.message().c_str());
+  return true;
+}
+
+void MappingNode::Shutdown() {
+  if (shut_down_) return;
+  shut_down_ = true;
+  if (parameters_.save_on_shutdown && slam_.size() > 0) {
+    const Status saved = Save();
+    if (!saved.ok()) ROS_ERROR("semchain_ros: saving on shutdown: %s", saved.message().c_str());
+  }
+  const Status written = WriteStats();
+  if (!written.ok()) ROS_ERROR("semchain_ros: %s", written.message().c_str());
+}
+
+Status MappingNode::WriteStats() const {
+  if (parameters_.stats_file.empty()) return Status::Ok();
+  const double span = timings_.last_stamp - timings_.first_stamp;
+  nlohmann::json stats = {
+      {"mode", "mapping"},
+      {"scans", slam_.size()},
+      {"processed", slam_.filter().statistics().processed},
+      {"dropped_scans", timings_.dropped_scans},
+      {"rejected_scans", timings_.rejected_scans},
+      {"frames_mapped", semantic_ ? semantic_->mapped_frames() : 0},
+      {"frames_skipped", semantic_ ? semantic_->skipped_frames() : 0},
+      {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
+      {"scan_seconds", span},
+      {"wall_seconds", timings_.wall_seconds},
+      {"real_time_factor", timings_.wall_seconds > 0.0 ? span / timings_.wall_seconds : 0.0}};
+  return WriteFileAtomically(parameters_.stats_file, stats.dump(2) + "\n");
+}
+
+}  // namespace semchain::ros1

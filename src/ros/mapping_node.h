@@ -1,0 +1,109 @@
+#pragma once
+
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/LaserScan.h>
+#include <std_msgs/String.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/status.h"
+#include "detection/yolo_detector.h"
+#include "mapping/incremental_slam.h"
+#include "ros/mapping_parameters.h"
+#include "ros/node_inputs.h"
+#include "semantic/live_semantic_run.h"
+
+// semchain_ros in mapping mode (~mode:=mapping): a drop-in for slam_gmapping that also maps
+// semantics. `semchain slam`'s SLAM (laser-odometry front end + RBPF) fed scan by scan, and the
+// semantic mapper fed the camera frames and SLAM's best trajectory as they arrive.
+//   subscribes  /scan, tf odom → base_link (laser and camera frames from tf),
+//               /camera/color/camera_info, /semchain/detections (one detections.jsonl record
+//               per message) or, with ~detector, /camera/color/image_raw + /camera/depth/image_raw
+//   publishes   latched /map every ~map_update_interval s of scan time, tf map → odom (the best
+//               particle's pose ∘ odometry⁻¹) after every scan, /semchain/objects with /map
+//   offers      /semchain/save_map (std_srvs/Trigger): the map folder to ~out, atomically; the
+//               node also saves there when it stops (~save_on_shutdown)
+namespace semchain::ros1 {
+
+struct MappingTimings {
+  std::vector<double> cpu_ms;  // thread CPU per scan: SLAM and the semantic mapper
+  int dropped_scans = 0;       // no odometry (tf) for them in time
+  int rejected_scans = 0;      // out of time order or of another beam count
+  double first_stamp = -1.0;   // scan time span, for the real-time factor
+  double last_stamp = -1.0;
+  double wall_seconds = 0.0;  // wall time from the first scan to the last
+};
+
+class MappingNode {
+ public:
+  // Reads the parameters and loads the detector; an error names the parameter or file.
+  static Result<std::unique_ptr<MappingNode>> Create(::ros::NodeHandle nh,
+                                                     ::ros::NodeHandle private_nh);
+  ~MappingNode();
+  MappingNode(const MappingNode&) = delete;
+  MappingNode& operator=(const MappingNode&) = delete;
+
+  // Writes the map folder to ~out (the final SLAM passes, the semantic map on them); nothing
+  // is written when there is no scan yet or on error (the error says why).
+  Status Save();
+  // What the node does when it stops: saves (~save_on_shutdown) and writes ~stats_file.
+  void Shutdown();
+
+ private:
+  MappingNode(::ros::NodeHandle nh, MappingNodeParameters parameters,
+              std::unique_ptr<detection::YoloDetector> detector);
+  void Start();
+
+  void OnScan(const sensor_msgs::LaserScanConstPtr& message);
+  void OnDetections(const std_msgs::StringConstPtr& message);
+  void OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message);
+  void OnColorImage(const sensor_msgs::ImageConstPtr& message);
+  void OnDepthImage(const sensor_msgs::ImageConstPtr& message);
+  bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+
+  // Whether 'scan' can follow the scans before it (time order, beam count); warns when not.
+  bool Acceptable(const StampedScan& scan) const;
+  void Feed(const StampedScan& scan);
+  void AddFrame(FrameDetections frame, const cv::Mat& depth_m);
+  void PublishTransform(const ::ros::Time& stamp, const Pose2& pose, const Pose2& odometry);
+  void PublishMap(const ::ros::Time& stamp);
+  Status WriteStats() const;
+
+  ::ros::NodeHandle nh_;
+  const MappingNodeParameters parameters_;
+  std::unique_ptr<detection::YoloDetector> detector_;
+  mapping::IncrementalSlam slam_;
+  std::unique_ptr<semantic::LiveSemanticRun> semantic_;  // once the camera is known
+
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  CameraTracker camera_;
+  RgbdDetector rgbd_;
+
+  ::ros::Subscriber scan_subscriber_;
+  ::ros::Subscriber detections_subscriber_;
+  ::ros::Subscriber camera_info_subscriber_;
+  ::ros::Subscriber color_subscriber_;
+  ::ros::Subscriber depth_subscriber_;
+  ::ros::Publisher map_publisher_;
+  ::ros::Publisher objects_publisher_;
+  ::ros::ServiceServer save_service_;
+
+  std::vector<StampedPose> trajectory_;  // SLAM's best so far, one pose per scan
+  std::optional<double> last_map_stamp_;
+  std::optional<::ros::WallTime> first_scan_wall_;
+  std::size_t published_objects_ = 0;
+  bool shut_down_ = false;
+  MappingTimings timings_;
+};
+
+}  // namespace semchain::ros1

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <string>
+
+#include "core/status.h"
+#include "mapping/slam_options.h"
+#include "ros/node_inputs.h"
+
+// The private parameters of semchain_ros in mapping mode. Where slam_gmapping has a parameter
+// of the same meaning it has the same name: particles, delta (the map's resolution),
+// maxUrange, linearUpdate, angularUpdate, resampleThreshold, srr, srt, str, stt,
+// map_update_interval, base_frame, odom_frame, map_frame; an unset one keeps semchain's
+// default (config/slam.yaml), or the value of ~slam_config when given.
+namespace semchain::ros1 {
+
+struct MappingNodeParameters {
+  std::string out;                   // ~out: the map folder /semchain/save_map writes (required)
+  std::string slam_config;           // ~slam_config: SLAM options YAML (as `slam --config`)
+  std::string detector;              // ~detector: ONNX model; empty: the detections topic
+  double camera_max_range = 6.0;     // ~camera_max_range: depth beyond is no reading
+  std::string stats_file;            // ~stats_file: CPU and latency JSON at exit
+  NodeFrames frames;                 // ~base_frame, ~odom_frame, ~map_frame, ~tf_wait
+  double map_update_interval = 5.0;  // s of scan time between two /map publications
+  double transform_tolerance = 0.1;  // s: map → odom is future-dated by this much
+  bool save_on_shutdown = true;      // ~save_on_shutdown: write ~out when the node stops
+  mapping::SlamOptions slam;
+};
+
+// Reads and validates the parameters; an error names the parameter.
+Result<MappingNodeParameters> ReadMappingNodeParameters(const ::ros::NodeHandle& private_nh);
+
+}  // namespace semchain::ros1
