@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# mapping_test.sh SEMCHAIN SEMCHAIN_ROS SOURCE_DIR WORK [RATE]: the node's mapping mode end to
+# end. Exports the fixture's mapping run of two_similar_rooms (WORK/mapping) as a bag without
+# images, plays it at RATE (default 2) into semchain_ros _mode:=mapping _out:=WORK/live_map
+# (tests/ros/mapping_checker.py: objects on /semchain/objects before the bag ends, then
+# /semchain/save_map), scores the saved semantic.json against the world (precision and recall
+# >= 0.97, tests/ros/score_semantic.py), then localizes the room A trial bag on that map in the
+# default mode (node_test.sh: the last /amcl_pose within 0.25 m and 10°).
+set -euo pipefail
+semchain="$1"
+node="$2"
+source_dir="$3"
+work="$4"
+rate="${5:-2}"
+name=mapping
+out="$work/live_map"
+"$semchain" bag export "$work/mapping" --out "$work/mapping.bag" --no-images >/dev/null
+rm -rf "$out"
+(
+  source "$source_dir/tests/ros/ros_env.sh"
+  ros_start "$name"
+  stats="$work/${name}_stats.json"
+  rm -f "$stats"
+  "$node" _mode:=mapping _out:="$out" _stats_file:="$stats" \
+    >"$ROS_LOG_DIR/semchain_ros.out" 2>&1 &
+  node_pid=$!
+  set +e
+  /usr/bin/python3 "$source_dir/tests/ros/mapping_checker.py" --bag "$work/mapping.bag" \
+    --rate "$rate" >"$work/${name}_result.json"
+  checker=$?
+  set -e
+  kill -INT "$node_pid"
+  wait "$node_pid" || true
+  cat "$work/${name}_result.json"
+  echo "node log:"; grep -E "semchain_ros" "$ROS_LOG_DIR/semchain_ros.out" | tail -n 12 || true
+  [ -s "$stats" ] && { echo "node stats:"; cat "$stats"; }
+  exit "$checker"
+)
+echo "saved map: $(ls "$out" | tr '\n' ' ')"
+/usr/bin/python3 "$source_dir/tests/ros/score_semantic.py" "$out/semantic.json" \
+  "$source_dir/worlds/two_similar_rooms.yaml"
+SEMCHAIN_MAP="$out" bash "$source_dir/tests/ros/node_test.sh" "$node" "$source_dir" "$work" \
+  live_map_lookalike "$work/room_a.bag" semantic-scanmatch
