@@ -236,6 +236,7 @@ Status MappingNode::Save() {
   contents.semantic = &mapped.map;
   contents.keyframes = &keyframes;
   SEMCHAIN_RETURN_IF_ERROR(semantic::WriteMapFolder(parameters_.out, contents));
+  saved_at_ = {slam_.size(), MappedFrames()};
   ROS_INFO("semchain_ros: saved %s: %zu scans, %zu objects, %zu chains", parameters_.out.c_str(),
            result.trajectory.size(), mapped.map.objects.size(), mapped.map.chains.size());
   return Status::Ok();
@@ -252,13 +253,18 @@ bool MappingNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
 void MappingNode::Shutdown() {
   if (shut_down_) return;
   shut_down_ = true;
-  if (parameters_.save_on_shutdown && slam_.size() > 0) {
+  // A map saved since the last scan and frame is what a save now would write (the final passes
+  // take seconds).
+  const bool saved_already = saved_at_ == std::pair(slam_.size(), MappedFrames());
+  if (parameters_.save_on_shutdown && slam_.size() > 0 && !saved_already) {
     const Status saved = Save();
     if (!saved.ok()) ROS_ERROR("semchain_ros: saving on shutdown: %s", saved.message().c_str());
   }
   const Status written = WriteStats();
   if (!written.ok()) ROS_ERROR("semchain_ros: %s", written.message().c_str());
 }
+
+int MappingNode::MappedFrames() const { return semantic_ ? semantic_->mapped_frames() : 0; }
 
 Status MappingNode::WriteStats() const {
   if (parameters_.stats_file.empty()) return Status::Ok();
@@ -269,7 +275,7 @@ Status MappingNode::WriteStats() const {
       {"processed", slam_.filter().statistics().processed},
       {"dropped_scans", timings_.dropped_scans},
       {"rejected_scans", timings_.rejected_scans},
-      {"frames_mapped", semantic_ ? semantic_->mapped_frames() : 0},
+      {"frames_mapped", MappedFrames()},
       {"frames_skipped", semantic_ ? semantic_->skipped_frames() : 0},
       {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
       {"scan_seconds", span},

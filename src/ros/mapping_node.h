@@ -12,6 +12,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/status.h"
@@ -75,6 +76,7 @@ class MappingNode {
   void AddFrame(FrameDetections frame, const cv::Mat& depth_m);
   void PublishTransform(const ::ros::Time& stamp, const Pose2& pose, const Pose2& odometry);
   void PublishMap(const ::ros::Time& stamp);
+  int MappedFrames() const;
   Status WriteStats() const;
 
   ::ros::NodeHandle nh_;
@@ -103,6 +105,7 @@ class MappingNode {
   std::optional<::ros::WallTime> first_scan_wall_;
   std::size_t published_objects_ = 0;
   bool shut_down_ = false;
+  std::optional<std::pair<std::size_t, int>> saved_at_;  // scans and frames at the last save
   MappingTimings timings_;
 };
 
