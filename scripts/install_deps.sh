@@ -15,9 +15,9 @@ ros_packages=(
   ros-core-dev librosbag-dev libtf2-ros-dev libtf2-msgs-dev libsensor-msgs-dev
   libnav-msgs-dev libgeometry-msgs-dev libvisualization-msgs-dev libstd-srvs-dev
   python3-rosbag python3-rostopic python3-rosservice python3-roslaunch
-  # The node tests' checker (tests/ros/node_checker.py) is a rospy node.
+  # The node tests' checkers (tests/ros/node_checker.py, mapping_checker.py) are rospy nodes.
   python3-rospy python3-std-msgs python3-std-srvs python3-geometry-msgs python3-sensor-msgs
-  python3-nav-msgs python3-tf2-msgs python3-rosgraph-msgs
+  python3-nav-msgs python3-tf2-msgs python3-rosgraph-msgs python3-visualization-msgs python3-yaml
 )
 if [ "${1:-}" != "--no-ros" ]; then
   packages+=("${ros_packages[@]}")

@@ -17,11 +17,19 @@ std::optional<geometry_msgs::TransformStamped> LookUpTransform(const tf2_ros::Bu
                                                                const std::string& source,
                                                                const ::ros::Time& stamp,
                                                                double wait) {
+  // Waits in wall time: tf2's own timeout runs on the ROS clock, which stands still once a
+  // bag played with --clock has ended, so a scan whose odometry never comes would block the
+  // node (and its services) for good.
+  const ::ros::WallTime deadline = ::ros::WallTime::now() + ::ros::WallDuration(wait);
   std::string error;
-  if (!buffer.canTransform(target, source, stamp, ::ros::Duration(wait), &error)) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: no transform %s -> %s at %.3f: %s", target.c_str(),
-                      source.c_str(), stamp.toSec(), error.c_str());
-    return std::nullopt;
+  while (!buffer.canTransform(target, source, stamp, &error)) {
+    if (::ros::WallTime::now() >= deadline || !::ros::ok()) {
+      ROS_WARN_THROTTLE(5.0, "semchain_ros: no transform %s -> %s at %.3f: %s", target.c_str(),
+                        source.c_str(), stamp.toSec(), error.c_str());
+      return std::nullopt;
+    }
+    error.clear();
+    ::ros::WallDuration(0.001).sleep();
   }
   return buffer.lookupTransform(target, source, stamp);
 }

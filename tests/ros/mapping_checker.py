@@ -53,12 +53,15 @@ def main() -> int:
                           stdout=subprocess.DEVNULL, check=False)
     play_seconds = time.monotonic() - wall_start
     time.sleep(1.0)  # the last scans are still on their way
+    save_start = time.monotonic()
     saved = save_map()
+    save_seconds = time.monotonic() - save_start
     with lock:
         result = dict(seen)
     result.update({"bag": args.bag, "rosbag_play_exit": play.returncode,
                    "bag_seconds": bag_end - bag_start, "play_wall_seconds": play_seconds,
-                   "save_success": saved.success, "save_message": saved.message})
+                   "save_success": saved.success, "save_message": saved.message,
+                   "save_wall_seconds": save_seconds})
     first = result["first_objects_stamp"]
     result["objects_before_end_s"] = None if first is None else bag_end - first
     ok = play.returncode == 0 and saved.success and first is not None and first < bag_end
