@@ -44,15 +44,11 @@ Result<std::unique_ptr<LocalizationNode>> LocalizationNode::Create(::ros::NodeHa
     if (!recognizer.ok()) return recognizer.status();
     map->recognizer = std::make_shared<const bow::KeyframeRecognizer>(std::move(*recognizer));
   }
-  std::unique_ptr<detection::YoloDetector> detector;
-  if (!parameters->detector.empty()) {
-    Result<std::unique_ptr<detection::YoloDetector>> loaded =
-        detection::LoadYoloDetector(parameters->detector, "", detection::YoloOptions());
-    if (!loaded.ok()) return loaded.status();
-    detector = std::move(*loaded);
-  }
+  Result<std::unique_ptr<detection::YoloDetector>> detector =
+      LoadNodeDetector(parameters->detector);
+  if (!detector.ok()) return detector.status();
   std::unique_ptr<LocalizationNode> node(new LocalizationNode(
-      nh, private_nh, std::move(*parameters), std::move(map), std::move(detector)));
+      nh, private_nh, std::move(*parameters), std::move(map), std::move(*detector)));
   node->Start();
   return node;
 }

@@ -32,15 +32,11 @@ Result<std::unique_ptr<MappingNode>> MappingNode::Create(::ros::NodeHandle nh,
                                                          ::ros::NodeHandle private_nh) {
   Result<MappingNodeParameters> parameters = ReadMappingNodeParameters(private_nh);
   if (!parameters.ok()) return parameters.status();
-  std::unique_ptr<detection::YoloDetector> detector;
-  if (!parameters->detector.empty()) {
-    Result<std::unique_ptr<detection::YoloDetector>> loaded =
-        detection::LoadYoloDetector(parameters->detector, "", detection::YoloOptions());
-    if (!loaded.ok()) return loaded.status();
-    detector = std::move(*loaded);
-  }
+  Result<std::unique_ptr<detection::YoloDetector>> detector =
+      LoadNodeDetector(parameters->detector);
+  if (!detector.ok()) return detector.status();
   std::unique_ptr<MappingNode> node(
-      new MappingNode(nh, std::move(*parameters), std::move(detector)));
+      new MappingNode(nh, std::move(*parameters), std::move(*detector)));
   node->Start();
   return node;
 }

@@ -124,6 +124,11 @@ std::optional<RgbdDetections> RgbdDetector::OnColorImage(const sensor_msgs::Imag
   return frame;
 }
 
+Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model) {
+  if (model.empty()) return std::unique_ptr<detection::YoloDetector>();
+  return detection::LoadYoloDetector(model, "", detection::YoloOptions());
+}
+
 nlohmann::json Spread(std::vector<double> values) {
   if (values.empty()) return nullptr;
   std::sort(values.begin(), values.end());

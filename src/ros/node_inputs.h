@@ -7,6 +7,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_ros/buffer.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -79,6 +80,9 @@ class RgbdDetector {
   detection::YoloDetector* detector_;
   sensor_msgs::ImageConstPtr latest_depth_;
 };
+
+// ~detector's model (no detector, null, when 'model' is empty); the error names the file.
+Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model);
 
 // Mean, median, 95th percentile and maximum of 'values' as JSON (null when empty).
 nlohmann::json Spread(std::vector<double> values);

@@ -19,22 +19,9 @@ rm -rf "$out"
 (
   source "$source_dir/tests/ros/ros_env.sh"
   ros_start "$name"
-  stats="$work/${name}_stats.json"
-  rm -f "$stats"
-  "$node" _mode:=mapping _out:="$out" _stats_file:="$stats" \
-    >"$ROS_LOG_DIR/semchain_ros.out" 2>&1 &
-  node_pid=$!
-  set +e
-  /usr/bin/python3 "$source_dir/tests/ros/mapping_checker.py" --bag "$work/mapping.bag" \
-    --rate "$rate" >"$work/${name}_result.json"
-  checker=$?
-  set -e
-  kill -INT "$node_pid"
-  wait "$node_pid" || true
-  cat "$work/${name}_result.json"
-  echo "node log:"; grep -E "semchain_ros" "$ROS_LOG_DIR/semchain_ros.out" | tail -n 12 || true
-  [ -s "$stats" ] && { echo "node stats:"; cat "$stats"; }
-  exit "$checker"
+  node_args=(_mode:=mapping _out:="$out")
+  ros_check "$name" "$source_dir/tests/ros/mapping_checker.py" --bag "$work/mapping.bag" \
+    --rate "$rate"
 )
 echo "saved map: $(ls "$out" | tr '\n' ' ')"
 /usr/bin/python3 "$source_dir/tests/ros/score_semantic.py" "$out/semantic.json" \

@@ -15,18 +15,5 @@ shift 6
 source "$source_dir/tests/ros/ros_env.sh"
 ros_start "$name"
 
-stats="$work/${name}_stats.json"
-rm -f "$stats"
-"$node" _map:="${SEMCHAIN_MAP:-$work/map}" _method:="$method" _stats_file:="$stats" \
-  >"$ROS_LOG_DIR/semchain_ros.out" 2>&1 &
-node_pid=$!
-set +e
-/usr/bin/python3 "$source_dir/tests/ros/node_checker.py" --bag "$bag" "$@" >"$work/${name}_result.json"
-checker=$?
-set -e
-kill -INT "$node_pid"
-wait "$node_pid" || true
-cat "$work/${name}_result.json"
-echo "node log:"; grep -E "semchain_ros" "$ROS_LOG_DIR/semchain_ros.out" | tail -n 8 || true
-[ -s "$stats" ] && { echo "node stats:"; cat "$stats"; }
-exit "$checker"
+node_args=(_map:="${SEMCHAIN_MAP:-$work/map}" _method:="$method")
+ros_check "$name" "$source_dir/tests/ros/node_checker.py" --bag "$bag" "$@"
