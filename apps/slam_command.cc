@@ -6,7 +6,8 @@
 // With --semantic RUN the semantic map grows while SLAM runs (one pass, DESIGN.md §1): also
 // MAP/semantic.json, keyframes.json, semantic.png (what `semantic` writes on the final
 // trajectory, equal to it) and semantic_growth.json (first sighting of each object, object
-// count over time, per-frame and re-projection costs).
+// count over time, per-frame and re-projection costs). The folder is staged beside MAP and
+// renamed into place (semantic::WriteMapFolder): a crash never leaves a half-written map.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
