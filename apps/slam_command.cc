@@ -43,6 +43,7 @@ struct SlamArgs {
   std::optional<int> seed;
   std::optional<int> threads;
   std::optional<int> max_scans;
+  bool raw_odometry = false;
   SlamSemanticArgs semantic;
 };
 
@@ -120,8 +121,16 @@ int RunSlamCommand(const SlamArgs& args) {
   if (!options.ok()) return ReportError(options.status());
   const Result<carmen::Log> log = carmen::ReadLog(args.log);
   if (!log.ok()) return ReportError(log.status());
-  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, args.log);
+  mapping::ReversedOdometryRepair repair;
+  Result<std::vector<StampedScan>> scans =
+      mapping::ScansFromLog(*log, args.log, args.raw_odometry ? nullptr : &repair);
   if (!scans.ok()) return ReportError(scans.status());
+  if (repair.steps > 0) {
+    spdlog::warn(
+        "slam: {}: the odometry moved forward while its velocity was negative in {} steps "
+        "({:.1f} m): reversed them (--raw-odometry keeps the log's odometry)",
+        args.log, repair.steps, repair.meters);
+  }
   if (args.max_scans && static_cast<std::size_t>(*args.max_scans) < scans->size()) {
     scans->resize(static_cast<std::size_t>(*args.max_scans));
   }
@@ -232,6 +241,9 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1.0, 1000.0));
   command->add_option("--max-scans", args->max_scans, "Use only the first N scans of the log")
       ->check(CLI::PositiveNumber);
+  command->add_flag("--raw-odometry", args->raw_odometry,
+                    "Use the log's odometry as written, also where it moves forward while its "
+                    "ODOM velocity says the robot backs up (by default such steps are reversed)");
   command->callback([args, &exit_code] { exit_code = RunSlamCommand(*args); });
 }
 

@@ -26,7 +26,7 @@ bool ProposalOptions::Validate(std::string* error) const {
     *error = "min_matched_points must be >= 0 and the minimum sigmas positive";
     return false;
   }
-  return mode_refinement.Validate(error);
+  return heading_search.Validate(error) && mode_refinement.Validate(error);
 }
 
 ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoints& points,
@@ -41,7 +41,22 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
   if (options.use_scan_matching) {
     const Pose2 start =
         options.match_from_motion_sample ? motion.Sample(previous, increment, rng) : prediction;
-    const MatchResult match = HillClimb(field, points, start, matcher);
+    MatchResult match = HillClimb(field, points, start, matcher);
+    const double heading_window =
+        std::min(options.heading_search.max_window_radians,
+                 options.heading_search.window_sigmas * motion.Sigmas(increment).z());
+    if (heading_window >= options.heading_search.step_radians) {
+      const HeadingSearchResult swept =
+          SearchHeading(field, points, start, heading_window, options.heading_search.step_radians);
+      if (std::abs(AngleDifference(swept.pose.theta, match.pose.theta)) >
+          matcher.angular_step_radians) {
+        const MatchResult other = HillClimb(field, points, swept.pose, matcher);
+        if (other.evaluation.score >
+            options.heading_search.min_score_ratio * match.evaluation.score) {
+          match = other;
+        }
+      }
+    }
     evaluation.matched = match.evaluation.matched >= options.min_matched_points;
     if (evaluation.matched) {
       evaluation.mode = match.pose;

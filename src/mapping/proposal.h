@@ -6,6 +6,7 @@
 
 #include "core/pose2.h"
 #include "core/rng.h"
+#include "mapping/heading_search.h"
 #include "mapping/hill_climbing_matcher.h"
 #include "mapping/likelihood_field.h"
 #include "mapping/motion_model.h"
@@ -26,6 +27,10 @@ struct ProposalOptions {
   // GMapping does): particles then find different local modes where there are several (a loop
   // closing with drift), which is where the filter needs its diversity.
   bool match_from_motion_sample = true;
+  // Sweep the heading around the start before hill climbing, and climb from the best heading
+  // too when it differs (heading_search.h): the match then absorbs the heading error of wheel
+  // odometry on a turn, which the kernel of the likelihood field alone cannot.
+  HeadingSearchOptions heading_search;
   // After hill climbing, refine the mode by Gauss-Newton with the (noise-free) prediction as a
   // prior of the motion model's covariance: along directions the scan does not constrain (a
   // corridor's axis) the mode returns to the prediction instead of keeping the random start,

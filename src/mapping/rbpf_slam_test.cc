@@ -116,6 +116,41 @@ TEST(SlamPipelineTest, EveryScanGetsAnAccuratePose) {
   }
 }
 
+// A turn in place of 1.2 rad in 0.1 rad steps among clutter, whose wheel odometry stalls for the
+// first 0.4 rad and then reports the rest: at every processed scan the odometry is 0.4 rad behind.
+std::vector<StampedScan> TurnWithStalledOdometry(std::vector<Pose2>* truth) {
+  const auto world = testing::ClutteredWorld();
+  std::vector<StampedScan> scans;
+  for (int i = 0; i <= 12; ++i) {
+    const Pose2 pose(0.3, -0.2, 0.1 * i);
+    const Pose2 odometry(0.3, -0.2, std::max(0.0, 0.1 * i - 0.4));
+    scans.push_back({testing::SimulateScan(world, pose), odometry, odometry});
+    truth->push_back(pose);
+  }
+  return scans;
+}
+
+TEST(RbpfSlamTest, WheelOdometryThatStallsOnATurnIsCorrectedByTheScans) {
+  std::vector<Pose2> truth;
+  const std::vector<StampedScan> scans = TurnWithStalledOdometry(&truth);
+  for (const bool sweep : {true, false}) {
+    RbpfOptions options = SmallFilter(8);
+    options.angular_update_radians = 0.5;
+    options.motion = {0.1, 0.1, 0.2, 0.2};  // config/slam-gmapping.yaml
+    options.proposal.heading_search.window_sigmas = sweep ? 5.0 : 0.0;
+    RbpfSlam slam(options);
+    for (std::size_t i = 0; i < scans.size(); ++i) slam.AddScan(scans[i], static_cast<int>(i));
+    const TrajectoryNode* last = slam.BestParticle().trajectory.get();
+    const double error = AngleDifference(last->pose.theta, truth[last->scan_index].theta);
+    if (sweep) {
+      EXPECT_NEAR(error, 0.0, DegToRad(1.0));
+    } else {
+      // Without the sweep the match cannot reach the heading (8° off here).
+      EXPECT_GT(std::abs(error), DegToRad(3.0));
+    }
+  }
+}
+
 TEST(ScanLocalizerTest, InterpolationReanchorsOdometryOnCorrectedScans) {
   // Odometry with a constant offset; the corrected poses remove it, linearly in time between.
   const std::vector<Pose2> odometry = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
@@ -127,6 +162,29 @@ TEST(ScanLocalizerTest, InterpolationReanchorsOdometryOnCorrectedScans) {
   EXPECT_NEAR(poses[2].y, 3.0, 1e-12);
   EXPECT_NEAR(poses[3].y, 3.0, 1e-12);  // after the last corrected scan: its correction
   EXPECT_NEAR(poses[3].x, 3.0, 1e-12);
+}
+
+TEST(ScanLocalizerTest, InterpolationDoesNotDependOnWhereTheOdometryFrameIs) {
+  // A turn whose odometry heading is off by 0.4 rad at the second processed scan (wheel odometry
+  // on a fast turn): the scans between must lie between the two corrected poses, wherever the
+  // odometry frame's origin is. The old global-correction interpolation put the middle scan
+  // metres away once the odometry was 500 m from its origin.
+  const std::vector<double> times = {0, 1, 2};
+  const std::vector<std::pair<int, Pose2>> corrected = {{0, Pose2(0, 0, 0)}, {2, Pose2(1, 0, 0.5)}};
+  const std::vector<Pose2> local = {{0, 0, 0}, {0.5, 0, 0.45}, {1, 0, 0.9}};
+  for (const Pose2& frame : {Pose2(0, 0, 0), Pose2(500, -300, 2.0)}) {
+    std::vector<Pose2> odometry;
+    for (const Pose2& pose : local) odometry.push_back(frame * pose);
+    const std::vector<Pose2> poses = InterpolateTrajectory(odometry, times, corrected);
+    EXPECT_NEAR(poses[0].x, 0.0, 1e-9);
+    EXPECT_NEAR(poses[2].x, 1.0, 1e-9);
+    EXPECT_NEAR(poses[2].theta, 0.5, 1e-9);
+    // Forward from scan 0: (0.5, 0, 0.45); backward from scan 2: (1, 0, 0.5) ⊕ (-0.5 rotated
+    // back by 0.45 rad); their midpoint lies within a few centimetres of (0.5, 0).
+    EXPECT_NEAR(poses[1].x, 0.5, 0.1);
+    EXPECT_NEAR(poses[1].y, 0.0, 0.15);
+    EXPECT_NEAR(poses[1].theta, 0.25, 1e-9);
+  }
 }
 
 }  // namespace

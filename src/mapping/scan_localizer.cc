@@ -23,26 +23,25 @@ std::vector<Pose2> InterpolateTrajectory(const std::vector<Pose2>& odometry,
                                          const std::vector<double>& timestamps,
                                          const std::vector<std::pair<int, Pose2>>& processed) {
   SEMCHAIN_CHECK(odometry.size() == timestamps.size() && !processed.empty());
-  std::vector<Pose2> corrections;
-  for (const auto& [index, pose] : processed) {
-    corrections.push_back(pose * odometry[static_cast<std::size_t>(index)].Inverse());
-  }
+  // Dead reckoning from the corrected pose of processed scan k to scan i.
+  auto from = [&](std::size_t k, std::size_t i) {
+    const auto& [index, pose] = processed[k];
+    return pose * odometry[static_cast<std::size_t>(index)].Between(odometry[i]);
+  };
   std::vector<Pose2> poses(odometry.size());
   std::size_t next = 0;  // first processed scan with index >= i
   for (std::size_t i = 0; i < odometry.size(); ++i) {
     while (next < processed.size() && processed[next].first < static_cast<int>(i)) ++next;
-    Pose2 correction;
     if (next == 0) {
-      correction = corrections.front();
+      poses[i] = from(0, i);
     } else if (next == processed.size()) {
-      correction = corrections.back();
+      poses[i] = from(processed.size() - 1, i);
     } else {
       const double t0 = timestamps[static_cast<std::size_t>(processed[next - 1].first)];
       const double t1 = timestamps[static_cast<std::size_t>(processed[next].first)];
       const double t = t1 > t0 ? std::clamp((timestamps[i] - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
-      correction = Interpolate(corrections[next - 1], corrections[next], t);
+      poses[i] = Interpolate(from(next - 1, i), from(next, i), t);
     }
-    poses[i] = correction * odometry[i];
   }
   return poses;
 }

@@ -35,9 +35,13 @@ struct EveryScanOptions {
 };
 
 // Odometry increments of every scan re-anchored on the corrected poses of the processed ones:
-// pose_i = C(t_i) ⊕ odometry_i with C the correction x_k ⊕ odometry_k⁻¹ of the processed scans,
-// interpolated in time between the two around t_i (held constant before the first and after
-// the last). 'processed' holds (scan index, corrected pose) in increasing index order.
+// between processed scans k and k+1, pose_i blends (linearly in time) the dead reckoning
+// x_k ⊕ (odometry_k⁻¹ ⊕ odometry_i) forward from k and the same backward from k+1; before the
+// first and after the last processed scan, dead reckoning from it. Blending the two local
+// predictions, not the global corrections x_k ⊕ odometry_k⁻¹, keeps the result independent of
+// where the odometry frame lies: a correction's rotation acts about the odometry origin, and
+// interpolating two of them 576 m from it (mit-csail) put the scans between metres off.
+// 'processed' holds (scan index, corrected pose) in increasing index order.
 std::vector<Pose2> InterpolateTrajectory(const std::vector<Pose2>& odometry,
                                          const std::vector<double>& timestamps,
                                          const std::vector<std::pair<int, Pose2>>& processed);

@@ -105,7 +105,12 @@ Status ReadFilterSections(const yaml::Node& root, RbpfOptions* o) {
                    {"min_matched_points", &p.min_matched_points},
                    {"min_sigma_meters", &p.min_sigma_meters},
                    {"min_sigma_radians", &p.min_sigma_radians}},
-                  {{"mode_refinement", RefinementFields(&p.mode_refinement)}}));
+                  {{"mode_refinement", RefinementFields(&p.mode_refinement)},
+                   {"heading_search",
+                    {{"window_sigmas", &p.heading_search.window_sigmas},
+                     {"max_window_radians", &p.heading_search.max_window_radians},
+                     {"step_radians", &p.heading_search.step_radians},
+                     {"min_score_ratio", &p.heading_search.min_score_ratio}}}}));
   AnnealingOptions& a = o->annealing;
   SEMCHAIN_RETURN_IF_ERROR(
       ReadSection(root, "annealing",

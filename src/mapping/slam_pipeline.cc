@@ -3,7 +3,8 @@
 #include "core/check.h"
 
 namespace semchain::mapping {
-Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std::string& source) {
+Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std::string& source,
+                                              ReversedOdometryRepair* repair) {
   if (log.records.empty()) return Status::Error(source + ": empty log (no records)");
   std::vector<StampedScan> scans;
   for (const carmen::Laser* laser : log.Lasers()) {
@@ -19,6 +20,7 @@ Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std:
     return Status::Error(source + ": no laser scans (FLASER or ROBOTLASER1 lines) in the log");
   }
   if (scans.front().scan.size() == 0) return Status::Error(source + ": laser scans have no beams");
+  if (repair != nullptr) *repair = RepairReversedOdometry(log.Odometries(), &scans);
   return scans;
 }
 

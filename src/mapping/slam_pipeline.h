@@ -9,6 +9,7 @@
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
 #include "mapping/incremental_slam.h"
+#include "mapping/odometry_repair.h"
 #include "mapping/slam_options.h"
 
 // The whole `semchain slam` computation on a sequence of scans: IncrementalSlam fed every scan,
@@ -17,7 +18,10 @@ namespace semchain::mapping {
 
 // The laser scans of a log with their odometry. Errors (naming 'source'): no laser lines,
 // beam counts that change within the log, non-increasing timestamps are fine (kept as is).
-Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std::string& source);
+// With 'repair' the odometry steps that move forward while the log's ODOM velocity says the
+// robot backs up are reversed (odometry_repair.h) and counted there.
+Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std::string& source,
+                                              ReversedOdometryRepair* repair = nullptr);
 
 // Runs SLAM on 'scans' (at least one). 'progress' (may be empty) is called with the number of
 // scans done, out of scans.size() for the filter and as much again for the final passes;

@@ -33,6 +33,25 @@ inline std::vector<Segment> RoomWorld() {
   return world;
 }
 
+// Clutter without long walls (a lab full of furniture): 'posts' posts of 0.2 m scattered over
+// 16 m × 16 m, none within 1 m of the origin. A rotation of a scan moves every endpoint off its
+// post, so the matching score has no slope towards the right heading beyond a few degrees.
+inline std::vector<Segment> ClutteredWorld(int posts = 60, std::uint64_t seed = 3) {
+  std::vector<Segment> world;
+  Rng rng = MakeRng(seed);
+  std::uniform_real_distribution<double> coordinate(-8.0, 8.0);
+  while (world.size() < 4 * static_cast<std::size_t>(posts)) {
+    const double x = coordinate(rng), y = coordinate(rng);
+    if (std::hypot(x, y) < 1.0) continue;
+    const double h = 0.1;
+    world.push_back({{x - h, y - h}, {x + h, y - h}});
+    world.push_back({{x + h, y - h}, {x + h, y + h}});
+    world.push_back({{x + h, y + h}, {x - h, y + h}});
+    world.push_back({{x - h, y + h}, {x - h, y - h}});
+  }
+  return world;
+}
+
 // Distance from 'origin' along unit 'direction' to the nearest segment, or +inf.
 inline double CastRay(const std::vector<Segment>& world, const Eigen::Vector2d& origin,
                       const Eigen::Vector2d& direction) {
