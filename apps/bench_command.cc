@@ -1,21 +1,27 @@
-// semchain bench slam --log L.clf --relations R.relations [--particles 8,30,50]
-//     [--variants plain,annealing,genetic,both] --out DIR
-// Runs `semchain slam` once per (particle count, variant) in a child process, measuring wall
-// time and the child's peak resident memory (wait4), and scores each trajectory with the
-// relation metric (Kümmerle et al. 2009) or, with --perturb-odometry on a corrected log, with
-// the ATE against the log's corrected poses (labelled synthetic-odometry). Writes
-// DIR/results.json and DIR/results.md. (`bench reloc` will be a sibling subcommand.)
+// semchain bench slam --log L1.clf [L2.clf ...] --relations R1.relations [R2.relations ...]
+//     [--config default,config/slam-gmapping.yaml] [--particles 8,30,50]
+//     [--variants plain,annealing,genetic,both] [--seed 1,2,3] --out DIR
+// Runs `semchain slam` once per log × configuration × particle count × variant × seed in a child
+// process, measuring wall time and the child's peak resident memory (wait4), and scores each
+// trajectory with the relation metric (Kümmerle et al. 2009) or, with --perturb-odometry on one
+// corrected log, with the ATE against the log's corrected poses (labelled synthetic-odometry).
+// Writes DIR/results.json (every run) and DIR/results.md (every run, and a summary over seeds).
 #include <fcntl.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 #include "apps/command.h"
 #include "core/atomic_file.h"
@@ -29,12 +35,37 @@ namespace semchain::app {
 namespace {
 
 struct BenchSlamArgs {
-  std::string log, relations, out, config, every_scan;
+  std::vector<std::string> logs, relations;
+  std::string out, every_scan;
+  // SLAM option files; "default" runs without one (the built-in defaults).
+  std::vector<std::string> configs{"default"};
   std::vector<int> particles{8, 30, 50};
   std::vector<std::string> variants{"plain", "annealing", "genetic", "both"};
-  int seed = 1;
+  std::vector<int> seeds{1};
   std::optional<int> threads, perturb_seed, max_scans;
 };
+
+// One cell of the benchmark grid.
+struct RunKey {
+  std::size_t log = 0;  // index into BenchSlamArgs::logs
+  std::string config;
+  int particles = 0;
+  std::string variant;
+  int seed = 1;
+};
+
+// "fr079" for ".../fr079.clf.gz", "slam-gmapping" for "config/slam-gmapping.yaml".
+std::string Label(const std::string& path) {
+  if (path == "default") return path;
+  std::string name = std::filesystem::path(path).filename().string();
+  for (const char* suffix : {".gz", ".clf", ".log", ".yaml"}) {
+    const std::string s(suffix);
+    if (name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0) {
+      name.resize(name.size() - s.size());
+    }
+  }
+  return name;
+}
 
 struct Reference {  // what the trajectories are scored against
   std::vector<eval::Relation> relations;
@@ -79,12 +110,19 @@ ChildResult RunChild(const std::vector<std::string>& args, const std::string& lo
 }
 
 std::vector<std::string> SlamArgs(const BenchSlamArgs& args, const Reference& reference,
-                                  const std::filesystem::path& dir, int particles,
-                                  const std::string& variant) {
-  std::vector<std::string> a = {"slam",       "--log",       reference.slam_log,        "--out",
-                                dir.string(), "--particles", std::to_string(particles), "--variant",
-                                variant,      "--seed",      std::to_string(args.seed)};
-  if (!args.config.empty()) a.insert(a.end(), {"--config", args.config});
+                                  const std::filesystem::path& dir, const RunKey& key) {
+  std::vector<std::string> a = {"slam",
+                                "--log",
+                                reference.slam_log,
+                                "--out",
+                                dir.string(),
+                                "--particles",
+                                std::to_string(key.particles),
+                                "--variant",
+                                key.variant,
+                                "--seed",
+                                std::to_string(key.seed)};
+  if (key.config != "default") a.insert(a.end(), {"--config", key.config});
   if (args.threads) a.insert(a.end(), {"--threads", std::to_string(*args.threads)});
   if (args.max_scans) a.insert(a.end(), {"--max-scans", std::to_string(*args.max_scans)});
   if (!args.every_scan.empty()) a.insert(a.end(), {"--every-scan", args.every_scan});
@@ -118,21 +156,123 @@ std::string Fixed(double value, int digits) {
   return buffer;
 }
 
+// Mean and sample standard deviation.
+std::pair<double, double> MeanStd(const std::vector<double>& values) {
+  if (values.empty()) return {0.0, 0.0};
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  const double mean = sum / static_cast<double>(values.size());
+  double squares = 0.0;
+  for (const double v : values) squares += (v - mean) * (v - mean);
+  const double std =
+      values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
+  return {mean, std};
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The error a run is ranked by: the mean translational relation error, or the ATE RMSE.
+double RunError(const nlohmann::json& run, bool relations) {
+  return run["metrics"][relations ? "trans_mean_m" : "ate_rmse_m"].get<double>();
+}
+
+// Over the seeds of each (log, config, particles, variant): mean ± std of the runs' errors, the
+// failures (runs above twice the median error of all runs of that log and configuration), and
+// the mean wall time.
+nlohmann::json Summary(const nlohmann::json& runs, bool relations) {
+  std::map<std::pair<std::string, std::string>, std::vector<double>> by_log_config;
+  for (const nlohmann::json& run : runs) {
+    if (run.contains("metrics")) {
+      by_log_config[{run["log"], run["config"]}].push_back(RunError(run, relations));
+    }
+  }
+  std::map<std::pair<std::string, std::string>, double> medians;
+  for (const auto& [key, errors] : by_log_config) medians[key] = Median(errors);
+  nlohmann::json summary = nlohmann::json::array();
+  std::map<std::tuple<std::string, std::string, int, std::string>, std::size_t> rows;
+  for (const nlohmann::json& run : runs) {
+    const auto key =
+        std::make_tuple(run["log"].get<std::string>(), run["config"].get<std::string>(),
+                        run["particles"].get<int>(), run["variant"].get<std::string>());
+    if (!rows.count(key)) {
+      rows[key] = summary.size();
+      summary.push_back({{"log", std::get<0>(key)},
+                         {"config", std::get<1>(key)},
+                         {"particles", std::get<2>(key)},
+                         {"variant", std::get<3>(key)},
+                         {"runs", 0},
+                         {"failed_runs", 0},
+                         {"failures", 0},
+                         {"errors", nlohmann::json::array()},
+                         {"rot_errors", nlohmann::json::array()},
+                         {"wall_s", nlohmann::json::array()}});
+    }
+    nlohmann::json& row = summary[rows[key]];
+    row["runs"] = row["runs"].get<int>() + 1;
+    row["wall_s"].push_back(run["wall_s"]);
+    if (!run.contains("metrics")) {
+      row["failed_runs"] = row["failed_runs"].get<int>() + 1;
+      continue;
+    }
+    const double error = RunError(run, relations);
+    row["errors"].push_back(error);
+    row["rot_errors"].push_back(
+        run["metrics"][relations ? "rot_mean_deg" : "rot_rmse_deg"].get<double>());
+    if (error > 2.0 * medians[{run["log"], run["config"]}]) {
+      row["failures"] = row["failures"].get<int>() + 1;
+    }
+  }
+  for (nlohmann::json& row : summary) {
+    const auto [mean, std] = MeanStd(row["errors"].get<std::vector<double>>());
+    const auto [rot_mean, rot_std] = MeanStd(row["rot_errors"].get<std::vector<double>>());
+    row["error_mean"] = mean;
+    row["error_std"] = std;
+    row["rot_mean"] = rot_mean;
+    row["rot_std"] = rot_std;
+    row["wall_s_mean"] = MeanStd(row["wall_s"].get<std::vector<double>>()).first;
+  }
+  return summary;
+}
+
 std::string MarkdownTable(const nlohmann::json& results, bool relations) {
   std::ostringstream md;
-  md << "# semchain bench slam\n\nlog: `" << results["log"].get<std::string>() << "`  \n"
+  md << "# semchain bench slam\n\n"
      << (relations ? "metric: relation error (Kümmerle et al. 2009)"
                    : "metric: ATE against the corrected poses (synthetic-odometry)")
-     << ", seed " << results["seed"] << "\n\n";
+     << "\n\n## Summary over seeds\n\n"
+     << "failures: runs above twice the median error of all runs of the same log and "
+        "configuration\n\n"
+     << "| log | config | particles | variant | runs | "
+     << (relations ? "trans (m) mean ± std over seeds | rot (deg) mean"
+                   : "ATE RMSE (m) mean ± std over seeds | rot RMSE (deg) mean")
+     << " | failures | wall (s) |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const nlohmann::json& row : results["summary"]) {
+    md << "| " << row["log"].get<std::string>() << " | " << row["config"].get<std::string>()
+       << " | " << row["particles"] << " | " << row["variant"].get<std::string>() << " | "
+       << row["runs"] << " | " << Fixed(row["error_mean"], 4) << " ± " << Fixed(row["error_std"], 4)
+       << " | " << Fixed(row["rot_mean"], 3) << " | " << row["failures"];
+    if (row["failed_runs"].get<int>() > 0) md << " (+" << row["failed_runs"] << " crashed)";
+    md << " | " << Fixed(row["wall_s_mean"], 1) << " |\n";
+  }
+  md << "\n## Every run\n\n";
   if (relations) {
-    md << "| particles | variant | trans (m) mean ± std | rot (deg) mean ± std | wall (s) | "
-          "peak RSS (MB) | resamplings / genetic |\n|---|---|---|---|---|---|---|\n";
+    md << "| log | config | particles | variant | seed | trans (m) mean ± std | rot (deg) mean ± "
+          "std | wall (s) | peak RSS (MB) | resamplings / genetic |\n"
+          "|---|---|---|---|---|---|---|---|---|---|\n";
   } else {
-    md << "| particles | variant | ATE RMSE (m) | ATE RMSE aligned (m) | ATE max (m) | "
-          "rot RMSE (deg) | wall (s) | peak RSS (MB) |\n|---|---|---|---|---|---|---|---|\n";
+    md << "| log | config | particles | variant | seed | ATE RMSE (m) | ATE RMSE aligned (m) | "
+          "ATE max (m) | rot RMSE (deg) | wall (s) | peak RSS (MB) |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|\n";
   }
   for (const nlohmann::json& run : results["runs"]) {
-    md << "| " << run["particles"] << " | " << run["variant"].get<std::string>() << " | ";
+    md << "| " << run["log"].get<std::string>() << " | " << run["config"].get<std::string>()
+       << " | " << run["particles"] << " | " << run["variant"].get<std::string>() << " | "
+       << run["seed"] << " | ";
     if (!run.contains("metrics")) {
       md << "failed: " << run.value("error", std::string("?")) << " |\n";
       continue;
@@ -154,16 +294,25 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
   return md.str();
 }
 
-nlohmann::json RunOne(const BenchSlamArgs& args, const Reference& reference, int particles,
-                      const std::string& variant) {
+nlohmann::json RunOne(const BenchSlamArgs& args, const Reference& reference, const RunKey& key) {
+  const std::string log = Label(args.logs[key.log]);
   const std::filesystem::path dir =
-      std::filesystem::path(args.out) / "runs" / ("p" + std::to_string(particles) + "_" + variant);
+      std::filesystem::path(args.out) / "runs" / log / Label(key.config) /
+      ("p" + std::to_string(key.particles) + "_" + key.variant + "_s" + std::to_string(key.seed));
   std::filesystem::create_directories(dir);
   const ChildResult child =
-      RunChild(SlamArgs(args, reference, dir, particles, variant), (dir / "slam.log").string());
-  nlohmann::json run = {{"particles", particles},       {"variant", variant},
-                        {"wall_s", child.wall_s},       {"peak_rss_mb", child.peak_rss_mb},
-                        {"exit_code", child.exit_code}, {"output", dir.string()}};
+      RunChild(SlamArgs(args, reference, dir, key), (dir / "slam.log").string());
+  nlohmann::json run = {{"log", log},
+                        {"log_path", args.logs[key.log]},
+                        {"config", Label(key.config)},
+                        {"config_path", key.config},
+                        {"particles", key.particles},
+                        {"variant", key.variant},
+                        {"seed", key.seed},
+                        {"wall_s", child.wall_s},
+                        {"peak_rss_mb", child.peak_rss_mb},
+                        {"exit_code", child.exit_code},
+                        {"output", dir.string()}};
   if (child.exit_code != 0) {
     run["error"] = "slam exited with " + std::to_string(child.exit_code) + " (see slam.log)";
     return run;
@@ -177,25 +326,26 @@ nlohmann::json RunOne(const BenchSlamArgs& args, const Reference& reference, int
   const Result<std::string> stats = ReadFile(dir / "slam.json");
   if (stats.ok()) {
     const nlohmann::json s = nlohmann::json::parse(*stats, nullptr, false);
-    for (const char* key : {"processed", "resamplings", "genetic_resamplings", "crossovers",
-                            "mutations", "mean_effective_sample_size", "mean_alpha"}) {
-      if (s.is_object() && s.contains(key)) run[key] = s[key];
+    for (const char* key_name : {"processed", "resamplings", "genetic_resamplings", "crossovers",
+                                 "mutations", "mean_effective_sample_size", "mean_alpha"}) {
+      if (s.is_object() && s.contains(key_name)) run[key_name] = s[key_name];
     }
   }
   return run;
 }
 
-Result<Reference> PrepareReference(const BenchSlamArgs& args) {
+Result<Reference> PrepareReference(const BenchSlamArgs& args, std::size_t index) {
   Reference reference;
-  reference.slam_log = args.log;
+  const std::string& log_path = args.logs[index];
+  reference.slam_log = log_path;
   if (!args.relations.empty()) {
-    Result<std::vector<eval::Relation>> relations = eval::ReadRelations(args.relations);
+    Result<std::vector<eval::Relation>> relations = eval::ReadRelations(args.relations[index]);
     if (!relations.ok()) return relations.status();
     reference.relations = std::move(*relations);
   }
-  const Result<carmen::Log> log = carmen::ReadLog(args.log);
+  const Result<carmen::Log> log = carmen::ReadLog(log_path);
   if (!log.ok()) return log.status();
-  if (log->Lasers().empty()) return Status::Error(args.log + ": no laser scans in the log");
+  if (log->Lasers().empty()) return Status::Error(log_path + ": no laser scans in the log");
   if (!args.perturb_seed) return reference;
   mapping::OdometryPerturbationOptions options;
   options.seed = static_cast<std::uint64_t>(*args.perturb_seed);
@@ -209,40 +359,76 @@ Result<Reference> PrepareReference(const BenchSlamArgs& args) {
   return reference;
 }
 
-int RunBenchSlam(const BenchSlamArgs& args) {
+Status CheckArgs(const BenchSlamArgs& args) {
   if (args.relations.empty() == !args.perturb_seed) {
-    return ReportError(Status::Error(
+    return Status::Error(
         "bench slam: give either --relations (real odometry) or --perturb-odometry SEED "
-        "(a corrected log scored by ATE)"));
+        "(a corrected log scored by ATE)");
   }
-  if (args.perturb_seed) {  // the perturbed log is written there, so check first
-    const Status writable = EnsureWritableDirectory(args.out);
-    if (!writable.ok()) return ReportError(writable);
+  if (!args.relations.empty() && args.relations.size() != args.logs.size()) {
+    return Status::Error("bench slam: " + std::to_string(args.logs.size()) + " logs but " +
+                         std::to_string(args.relations.size()) +
+                         " relation files (one per log, in the same order)");
   }
-  const Result<Reference> reference = PrepareReference(args);
-  if (!reference.ok()) return ReportError(reference.status());
+  if (args.perturb_seed && args.logs.size() != 1) {
+    return Status::Error("bench slam: --perturb-odometry takes exactly one log");
+  }
+  std::set<std::string> labels;
+  for (const std::string& log : args.logs) {
+    if (!labels.insert(Label(log)).second) {
+      return Status::Error("bench slam: two logs named '" + Label(log) + "'; rename one");
+    }
+  }
+  for (const std::string& config : args.configs) {
+    if (config != "default" && !std::filesystem::is_regular_file(config)) {
+      return Status::Error("bench slam: --config " + config + ": no such file");
+    }
+  }
+  return Status::Ok();
+}
+
+int RunBenchSlam(const BenchSlamArgs& args) {
+  const Status valid = CheckArgs(args);
+  if (!valid.ok()) return ReportError(valid);
   const Status writable = EnsureWritableDirectory(args.out);
   if (!writable.ok()) return ReportError(writable);
+  std::vector<Reference> references;
+  for (std::size_t i = 0; i < args.logs.size(); ++i) {
+    Result<Reference> reference = PrepareReference(args, i);
+    if (!reference.ok()) return ReportError(reference.status());
+    references.push_back(std::move(*reference));
+  }
+  const bool relations = !args.relations.empty();
   nlohmann::json results = {
-      {"log", args.log},
-      {"relations", args.relations},
-      {"metric", args.relations.empty() ? "ate (synthetic-odometry)" : "relations"},
-      {"seed", args.seed},
-      {"runs", nlohmann::json::array()}};
+      {"logs", args.logs},       {"relations", args.relations},
+      {"configs", args.configs}, {"metric", relations ? "relations" : "ate (synthetic-odometry)"},
+      {"seeds", args.seeds},     {"runs", nlohmann::json::array()}};
   if (args.perturb_seed) results["perturb_odometry_seed"] = *args.perturb_seed;
   const std::filesystem::path out(args.out);
+  const std::size_t total = args.logs.size() * args.configs.size() * args.particles.size() *
+                            args.variants.size() * args.seeds.size();
   int failures = 0;
-  for (const int particles : args.particles) {
-    for (const std::string& variant : args.variants) {
-      spdlog::info("bench slam: {} particles, {}", particles, variant);
-      results["runs"].push_back(RunOne(args, *reference, particles, variant));
-      if (!results["runs"].back().contains("metrics")) ++failures;
-      spdlog::info("bench slam: {}", results["runs"].back().dump());
-      const Status written = WriteFileAtomically(out / "results.json", results.dump(2) + "\n");
-      if (!written.ok()) return ReportError(written);
-      const Status md =
-          WriteFileAtomically(out / "results.md", MarkdownTable(results, !args.relations.empty()));
-      if (!md.ok()) return ReportError(md);
+  for (std::size_t log = 0; log < args.logs.size(); ++log) {
+    for (const std::string& config : args.configs) {
+      for (const int particles : args.particles) {
+        for (const std::string& variant : args.variants) {
+          for (const int seed : args.seeds) {
+            const RunKey key{log, config, particles, variant, seed};
+            spdlog::info("bench slam: run {}/{}: {}, {}, {} particles, {}, seed {}",
+                         results["runs"].size() + 1, total, Label(args.logs[log]), Label(config),
+                         particles, variant, seed);
+            results["runs"].push_back(RunOne(args, references[log], key));
+            if (!results["runs"].back().contains("metrics")) ++failures;
+            results["summary"] = Summary(results["runs"], relations);
+            const Status written =
+                WriteFileAtomically(out / "results.json", results.dump(2) + "\n");
+            if (!written.ok()) return ReportError(written);
+            const Status md =
+                WriteFileAtomically(out / "results.md", MarkdownTable(results, relations));
+            if (!md.ok()) return ReportError(md);
+          }
+        }
+      }
     }
   }
   if (failures > 0) {
@@ -255,9 +441,16 @@ int RunBenchSlam(const BenchSlamArgs& args) {
 void AddBenchSlam(CLI::App& bench, int& exit_code) {
   auto args = std::make_shared<BenchSlamArgs>();
   CLI::App* command = bench.add_subcommand(
-      "slam", "SLAM accuracy, time and memory over particle counts and seed 003 variants");
-  command->add_option("--log", args->log, "CARMEN log")->required();
-  command->add_option("--relations", args->relations, "Kümmerle relations file");
+      "slam",
+      "SLAM accuracy, time and memory over logs, configurations, particle counts, seed 003 "
+      "variants and seeds");
+  command->add_option("--log", args->logs, "CARMEN logs (several: one run grid per log)")
+      ->required()
+      ->delimiter(',');
+  command
+      ->add_option("--relations", args->relations,
+                   "Kümmerle relations files, one per --log in the same order")
+      ->delimiter(',');
   command->add_option("--perturb-odometry", args->perturb_seed,
                       "Corrected log: replace its odometry by seeded synthetic odometry and "
                       "score by ATE against the corrected poses");
@@ -267,8 +460,13 @@ void AddBenchSlam(CLI::App& bench, int& exit_code) {
   command->add_option("--variants", args->variants, "plain, annealing, genetic, both")
       ->delimiter(',')
       ->check(CLI::IsMember({"plain", "annealing", "genetic", "both"}));
-  command->add_option("--config", args->config, "SLAM options YAML passed to every run");
-  command->add_option("--seed", args->seed, "Random seed of every run");
+  command
+      ->add_option("--config", args->configs,
+                   "SLAM option files, each a configuration of the grid; 'default' = the "
+                   "built-in defaults (default: default)")
+      ->delimiter(',');
+  command->add_option("--seed", args->seeds, "Random seeds (each configuration runs every one)")
+      ->delimiter(',');
   command->add_option("--threads", args->threads, "Worker threads per run");
   command->add_option("--max-scans", args->max_scans, "Use only the first N scans");
   command->add_option("--every-scan", args->every_scan, "localize or interpolate");

@@ -26,8 +26,6 @@ constexpr sim::Color kScanMatchColor = {0, 0, 0};
 constexpr int kMarginPx = 30;  // room for the title above the map
 constexpr int kLegendWidthPx = 380;
 
-cv::Scalar Bgr(const sim::Color& c) { return {double(c[2]), double(c[1]), double(c[0])}; }
-
 // The colour of the rank-th of 'count' clouds, piecewise linear along kRamp.
 sim::Color RampColor(std::size_t rank, std::size_t count) {
   const double t = count > 1 ? static_cast<double>(rank) / static_cast<double>(count - 1) : 1.0;

@@ -5,13 +5,13 @@
 #include <set>
 #include <string>
 
+#include "apps/map_grey.h"
+
 namespace semchain::app {
 namespace {
 
 constexpr sim::Color kChainColor = {230, 0, 120};
 constexpr sim::Color kNeighbourColor = {150, 150, 150};
-
-cv::Scalar Bgr(const sim::Color& c) { return {double(c[2]), double(c[1]), double(c[0])}; }
 
 cv::Point Pixel(const sim::TopDownCanvas& canvas, const Eigen::Vector2d& p) {
   const cv::Point2d px = canvas.ToPixel(p);

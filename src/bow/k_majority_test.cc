@@ -4,11 +4,12 @@
 
 #include <set>
 
+#include "bow/bow_testing.h"
+
 namespace semchain::bow {
 namespace {
 
-// A 32-byte descriptor filled with 'byte'.
-cv::Mat Filled(unsigned char byte) { return cv::Mat(1, 32, CV_8UC1, cv::Scalar(byte)); }
+using testing::Filled;
 
 // 'centre' with bits 'first' and 'first' + 1 flipped.
 cv::Mat Flipped(const cv::Mat& centre, int first) {

@@ -39,14 +39,16 @@ Status ReadGmappingNames(const ::ros::NodeHandle& nh, mapping::SlamOptions* slam
                                        NonNegative, ">= 0 (radians)"));
   SEMCHAIN_RETURN_IF_ERROR(
       ReadChecked(nh, "resampleThreshold", &rbpf.resample_threshold, Fraction, "in (0, 1]"));
-  // GMapping's odometry model (ROS wiki): srr translation from translation, srt translation
-  // from rotation, str rotation from translation, stt rotation from rotation.
+  // GMapping's odometry model as its code uses it (openslam_gmapping motionmodel.cpp: the
+  // translation noise is srr·|Δx| + str·|Δθ|, the heading noise stt·|Δθ| + srt·distance), so that
+  // the same values give the same noise as slam_gmapping. The ROS wiki describes srt and str the
+  // other way round.
   mapping::MotionModelOptions& motion = rbpf.motion;
   SEMCHAIN_RETURN_IF_ERROR(
       ReadChecked(nh, "srr", &motion.translation_per_meter, NonNegative, ">= 0"));
   SEMCHAIN_RETURN_IF_ERROR(
-      ReadChecked(nh, "srt", &motion.translation_per_radian, NonNegative, ">= 0"));
-  SEMCHAIN_RETURN_IF_ERROR(ReadChecked(nh, "str", &motion.rotation_per_meter, NonNegative, ">= 0"));
+      ReadChecked(nh, "str", &motion.translation_per_radian, NonNegative, ">= 0"));
+  SEMCHAIN_RETURN_IF_ERROR(ReadChecked(nh, "srt", &motion.rotation_per_meter, NonNegative, ">= 0"));
   SEMCHAIN_RETURN_IF_ERROR(
       ReadChecked(nh, "stt", &motion.rotation_per_radian, NonNegative, ">= 0"));
   return Status::Ok();

@@ -5,18 +5,18 @@
 namespace semchain::semantic {
 namespace {
 
-const GridGeometry kGeometry{20, 10, 0.1, Eigen::Vector2d(0.0, 0.0)};
+const GridGeometry kGridGeometry{20, 10, 0.1, Eigen::Vector2d(0.0, 0.0)};
 
 FrameEvidence Hit(int c, const Eigen::Vector2i& cell) {
   FrameEvidence evidence;
   evidence.hits.resize(3);
-  evidence.hits[c].push_back({cell, kGeometry.CenterOf(cell) + Eigen::Vector2d(0.02, -0.01)});
+  evidence.hits[c].push_back({cell, kGridGeometry.CenterOf(cell) + Eigen::Vector2d(0.02, -0.01)});
   evidence.viewer = Eigen::Vector2d(0.0, 0.5);
   return evidence;
 }
 
 TEST(SemanticGridTest, RepeatedHitsRaiseAndMissesLower) {
-  SemanticGrid grid(kGeometry, 3, SemanticGridOptions());
+  SemanticGrid grid(kGridGeometry, 3, SemanticGridOptions());
   const Eigen::Vector2i cell(5, 5);
   double last = grid.Probability(1, cell);
   EXPECT_DOUBLE_EQ(last, 0.5);
@@ -30,7 +30,7 @@ TEST(SemanticGridTest, RepeatedHitsRaiseAndMissesLower) {
   // A hit of class 1 is evidence against the others there.
   EXPECT_LT(grid.Probability(0, cell), 0.5);
   EXPECT_EQ(grid.HitFrames(1, cell), 4);
-  EXPECT_NEAR(grid.MeanPoint(1, cell).x(), kGeometry.CenterOf(cell).x() + 0.02, 1e-6);
+  EXPECT_NEAR(grid.MeanPoint(1, cell).x(), kGridGeometry.CenterOf(cell).x() + 0.02, 1e-6);
   // The camera was to the west: the view direction points there.
   EXPECT_LT(grid.ViewDirection(1, cell).x(), -0.9);
 
@@ -47,7 +47,7 @@ TEST(SemanticGridTest, RepeatedHitsRaiseAndMissesLower) {
 
 TEST(SemanticGridTest, UndetectedSurfacesFadeAndValuesAreClamped) {
   SemanticGridOptions options;
-  SemanticGrid grid(kGeometry, 3, options);
+  SemanticGrid grid(kGridGeometry, 3, options);
   const Eigen::Vector2i cell(2, 3);
   for (int i = 0; i < 50; ++i) grid.Update(Hit(2, cell));
   EXPECT_FLOAT_EQ(grid.LogOdds(2, cell), static_cast<float>(options.max_abs_log_odds));
@@ -67,7 +67,7 @@ TEST(SemanticGridTest, UndetectedSurfacesFadeAndValuesAreClamped) {
 // A segment's cells do not depend on the extent of the grid (it grows with the SLAM map).
 TEST(SemanticGridTest, SegmentCellsAreNotClippedToTheGrid) {
   const std::vector<Eigen::Vector2i> cells =
-      CellsOnSegment(kGeometry, Eigen::Vector2d(0.05, 0.05), Eigen::Vector2d(5.0, 0.05));
+      CellsOnSegment(kGridGeometry, Eigen::Vector2d(0.05, 0.05), Eigen::Vector2d(5.0, 0.05));
   ASSERT_EQ(cells.size(), 51u);  // the grid is 20 cells wide
   EXPECT_EQ(cells.front(), Eigen::Vector2i(0, 0));
   EXPECT_EQ(cells.back(), Eigen::Vector2i(50, 0));
@@ -76,8 +76,8 @@ TEST(SemanticGridTest, SegmentCellsAreNotClippedToTheGrid) {
 // Grown, the grid keeps its cells' values and numbers, and a crop back to the first extent
 // is the grid that never grew.
 TEST(SemanticGridTest, GrowAndCropKeepTheCells) {
-  SemanticGrid fixed(kGeometry, 3, SemanticGridOptions());
-  SemanticGrid growing(kGeometry, 3, SemanticGridOptions());
+  SemanticGrid fixed(kGridGeometry, 3, SemanticGridOptions());
+  SemanticGrid growing(kGridGeometry, 3, SemanticGridOptions());
   FrameEvidence evidence;
   evidence.hits = {{}, {{Eigen::Vector2i(4, 5), Eigen::Vector2d(0.23, 0.27)}}, {}};
   evidence.free_cells = {Eigen::Vector2i(6, 5), Eigen::Vector2i(-3, 2)};
@@ -86,7 +86,7 @@ TEST(SemanticGridTest, GrowAndCropKeepTheCells) {
   EXPECT_TRUE(growing.Contains(Eigen::Vector2i(-3, 2)));
   growing.Update(evidence);
   EXPECT_LT(growing.LogOdds(0, Eigen::Vector2i(-3, 2)), 0.0f);
-  const SemanticGrid cropped = growing.Crop(kGeometry);
+  const SemanticGrid cropped = growing.Crop(kGridGeometry);
   for (int c = 0; c < 3; ++c) {
     EXPECT_EQ(cv::norm(cropped.log_odds(c), fixed.log_odds(c), cv::NORM_INF), 0.0);
   }

@@ -21,15 +21,15 @@ bool Overlaps(const Eigen::Vector2i& low_a, const Eigen::Vector2i& high_a,
   return (low_a.array() <= high_b.array()).all() && (low_b.array() <= high_a.array()).all();
 }
 
+}  // namespace
+
 // The keyframes: frames with a detection on a mapped object, with the objects' chain
 // neighbours (seed 000 §3.1 step 2).
-struct KeyframeDetection {
+struct SemanticMapper::KeyframeDetection {
   int frame = 0;
   const Detection* detection = nullptr;
   int object = -1;
 };
-
-}  // namespace
 
 bool SemanticMapperOptions::Validate(std::string* error) const {
   if (!(reproject_distance_meters >= 0.0) || !(reproject_angle_radians >= 0.0)) {

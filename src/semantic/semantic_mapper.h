@@ -110,6 +110,7 @@ class SemanticMapper {
     Eigen::Vector2i high = Eigen::Vector2i::Constant(-1);
   };
 
+  struct KeyframeDetection;
   struct Observations;
   Observations ObservationsOn(const GridGeometry& geometry) const;
   PosedEvidence Pose(const FrameRecord& frame, const Pose2& pose) const;

@@ -11,7 +11,7 @@ namespace semchain::semantic {
 namespace {
 
 // A level camera 0.5 m up and 0.1 m ahead of the robot centre, looking forward.
-MountedCamera LevelCamera() {
+MountedCamera ForwardCamera() {
   MountedCamera camera;
   camera.intrinsics = PinholeCamera::FromFov(160, 120, M_PI / 2);
   camera.robot_from_camera = RobotFromOpticalCamera(0.1, 0.0, 0.5, 0.0, 0.0);
@@ -60,9 +60,9 @@ TEST(SemanticMapperTest, ReposedFramesEqualFramesMappedOnTheNewPoses) {
   for (const double fraction : {0.9, 0.1}) {
     SemanticMapperOptions options;
     options.full_rebuild_fraction = fraction;
-    SemanticMapper live(kLattice, DefaultClassNames(), LevelCamera(), SemanticMapOptions(),
+    SemanticMapper live(kLattice, DefaultClassNames(), ForwardCamera(), SemanticMapOptions(),
                         options);
-    SemanticMapper batch(kLattice, DefaultClassNames(), LevelCamera(), SemanticMapOptions(),
+    SemanticMapper batch(kLattice, DefaultClassNames(), ForwardCamera(), SemanticMapOptions(),
                          options);
     const std::vector<Pose2> before = Poses(0.0);
     const std::vector<Pose2> after = Poses(0.3);
@@ -84,7 +84,7 @@ TEST(SemanticMapperTest, ReposedFramesEqualFramesMappedOnTheNewPoses) {
 
 // The grid grows with the evidence: frames far from the first map's extent keep their cells.
 TEST(SemanticMapperTest, GridGrowsWithTheEvidence) {
-  SemanticMapper mapper(kLattice, DefaultClassNames(), LevelCamera(), SemanticMapOptions());
+  SemanticMapper mapper(kLattice, DefaultClassNames(), ForwardCamera(), SemanticMapOptions());
   mapper.AddFrame(Frame(0), Pose2(-20.0, 30.0, 0.0), Depth());
   // The cabinet's face: 1.5 m ahead of the camera, 0.1 m ahead of the robot.
   const Eigen::Vector2i cabinet = kLattice.CellOf(Eigen::Vector2d(-18.39, 30.0));

@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kNearPlane = 0.01;  // metres
 
-double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+double CrossAbout(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
@@ -25,11 +25,11 @@ std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points) {
   std::vector<Eigen::Vector2d> hull(2 * points.size());
   std::size_t k = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    while (k >= 2 && CrossAbout(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
     hull[k++] = points[i];
   }
   for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    while (k >= lower && CrossAbout(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
     hull[k++] = points[i];
   }
   hull.resize(k - 1);

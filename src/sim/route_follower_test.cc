@@ -12,7 +12,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-World Room() {
+World RouteRoom() {
   World world;
   world.walls = {{{0, 0}, {10, 0}, {10, 6}, {0, 6}, {0, 0}}};
   world.mapping_route = {{1, 1}, {8, 1}, {8, 5}, {2, 4}, {1, 1}};
@@ -48,7 +48,7 @@ TEST(DiffDriveTest, ArcIntegrationIsExact) {
 }
 
 TEST(RouteFollowerTest, ReachesEveryWaypointInOrderWithinLimits) {
-  const World world = Room();
+  const World world = RouteRoom();
   const Scene scene(world);
   const auto samples = GenerateTrajectory(scene, world.robot, RouteSpec{}, world.robot.start);
   ASSERT_TRUE(samples.ok()) << samples.status().message();
@@ -78,7 +78,7 @@ TEST(RouteFollowerTest, ReachesEveryWaypointInOrderWithinLimits) {
 }
 
 TEST(RouteFollowerTest, TrialRotatesOnceThenDrivesAhead) {
-  const World world = Room();
+  const World world = RouteRoom();
   const Scene scene(world);
   RouteSpec trial;
   trial.kind = RouteSpec::Kind::kTrial;
@@ -103,7 +103,7 @@ TEST(RouteFollowerTest, TrialRotatesOnceThenDrivesAhead) {
 }
 
 TEST(RouteFollowerTest, TrialStopsBeforeAnObstacleAhead) {
-  World world = Room();
+  World world = RouteRoom();
   Solid low_box;  // lower than any lidar, still in the way
   low_box.footprint.center = {3.8, 3.0};
   low_box.footprint.width = low_box.footprint.depth = 0.2;
@@ -122,7 +122,7 @@ TEST(RouteFollowerTest, TrialStopsBeforeAnObstacleAhead) {
 }
 
 TEST(RouteFollowerTest, RouteThroughAWallIsAnError) {
-  World world = Room();
+  World world = RouteRoom();
   world.walls.push_back({{5, 0}, {5, 3}});
   const Scene scene(world);
   const auto samples = GenerateTrajectory(scene, world.robot, RouteSpec{}, world.robot.start);
@@ -131,7 +131,7 @@ TEST(RouteFollowerTest, RouteThroughAWallIsAnError) {
 }
 
 TEST(RouteFollowerTest, EmptyRouteAndBadStartAreErrors) {
-  World world = Room();
+  World world = RouteRoom();
   world.mapping_route.clear();
   const Scene scene(world);
   EXPECT_THAT(

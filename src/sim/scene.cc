@@ -4,12 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "core/cross2.h"
+
 namespace semchain::sim {
 namespace {
-
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                          const Eigen::Vector2d& b) {

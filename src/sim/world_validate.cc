@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/angles.h"
+#include "core/cross2.h"
 #include "sim/scene.h"
 #include "sim/world_io.h"
 
@@ -13,10 +14,6 @@ namespace semchain::sim {
 namespace {
 
 using Polygon = std::vector<Eigen::Vector2d>;
-
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 // True when segments ab and cd cross at a point interior to both (touching does not count).
 bool SegmentsCross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,

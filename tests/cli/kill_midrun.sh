@@ -12,13 +12,22 @@ cd "$work"
 
 checksums() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
 
-# Runs "$@" (whose output is $out), kills it after $delay seconds, and checks $out afterwards.
+# kill_and_check NAME OUT DELAY KILLED_COMMAND... -- NEXT_COMMAND...
+# Runs the killed command (whose output is $out), kills it after $delay seconds, checks $out,
+# then runs the next command (a shorter run to the same $out) and checks what it leaves.
 kill_and_check() {
   local name="$1" out="$2" delay="$3"
   shift 3
+  local killed=() next=()
+  while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do
+    killed+=("$1")
+    shift
+  done
+  shift
+  next=("$@")
   local before
   before="$(checksums "$out")"
-  "$@" >/dev/null 2>&1 &
+  "${killed[@]}" >/dev/null 2>&1 &
   local pid=$!
   sleep "$delay"
   if ! kill -0 "$pid" 2>/dev/null; then
@@ -32,7 +41,7 @@ kill_and_check() {
     exit 1
   fi
   # The next run neither trips over the leftovers nor shows them inside its output.
-  if ! "$@" >/dev/null 2>err.txt; then
+  if ! "${next[@]}" >/dev/null 2>err.txt; then
     echo "FAIL: $name: the run after the kill failed:"
     cat err.txt
     exit 1
@@ -48,11 +57,16 @@ kill_and_check() {
   echo "ok: $name"
 }
 
+# The killed runs are long enough to be killed mid-run; the runs after them are short.
 "$semchain" simulate --world "$world" --out run --seed 5 >/dev/null
-kill_and_check simulate run 1 "$semchain" simulate --world "$world" --out run --seed 6
-"$semchain" slam --log run/log.clf --out map >/dev/null 2>&1
-kill_and_check slam map 1 "$semchain" slam --log run/log.clf --out map --particles 60
+kill_and_check simulate run 1 "$semchain" simulate --world "$world" --out run --seed 6 \
+  -- "$semchain" simulate --world "$world" --out run --seed 5
+"$semchain" slam --log run/log.clf --out map --particles 8 >/dev/null 2>&1
+kill_and_check slam map 1 "$semchain" slam --log run/log.clf --out map --particles 60 \
+  -- "$semchain" slam --log run/log.clf --out map --particles 8
 "$semchain" semantic --run run --map map --out map >/dev/null
-kill_and_check semantic map 0.3 "$semchain" semantic --run run --map map --out map
+kill_and_check semantic map 0.3 "$semchain" semantic --run run --map map --out map \
+  -- "$semchain" semantic --run run --map map --out map
 "$semchain" dataset --out dataset --images 20 --seed 1 --threads 1 >/dev/null
-kill_and_check dataset dataset 1 "$semchain" dataset --out dataset --images 400 --seed 2 --threads 1
+kill_and_check dataset dataset 1 "$semchain" dataset --out dataset --images 400 --seed 2 \
+  --threads 1 -- "$semchain" dataset --out dataset --images 20 --seed 2 --threads 1
