@@ -1,6 +1,9 @@
 #include "mapping/heading_search.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "core/angles.h"
 
 namespace semchain::mapping {
 
@@ -32,6 +35,22 @@ HeadingSearchResult SearchHeading(const LikelihoodField& field, const MatchPoint
     }
   }
   return best;
+}
+
+MatchResult MatchWithHeadingSearch(const LikelihoodField& field, const MatchPoints& points,
+                                   const Pose2& start, const HillClimbingOptions& matcher,
+                                   const HeadingSearchOptions& options, double heading_sigma) {
+  const MatchResult match = HillClimb(field, points, start, matcher);
+  const double window = std::min(options.max_window_radians, options.window_sigmas * heading_sigma);
+  if (window < options.step_radians) return match;
+  const HeadingSearchResult swept =
+      SearchHeading(field, points, start, window, options.step_radians);
+  if (std::abs(AngleDifference(swept.pose.theta, match.pose.theta)) <=
+      matcher.angular_step_radians) {
+    return match;
+  }
+  const MatchResult other = HillClimb(field, points, swept.pose, matcher);
+  return other.evaluation.score > options.min_score_ratio * match.evaluation.score ? other : match;
 }
 
 }  // namespace semchain::mapping

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/pose2.h"
+#include "mapping/hill_climbing_matcher.h"
 #include "mapping/likelihood_field.h"
 #include "mapping/prepared_scan.h"
 
@@ -45,5 +46,13 @@ struct HeadingSearchResult {
 // start itself included) and returns the best.
 HeadingSearchResult SearchHeading(const LikelihoodField& field, const MatchPoints& points,
                                   const Pose2& start, double window_radians, double step_radians);
+
+// Hill climbing from 'start', and from the best heading of the sweep over
+// ±min(max_window_radians, window_sigmas × heading_sigma) when that lies more than one angular
+// step of the climber away; the second match wins only when it scores min_score_ratio times
+// higher. With the sweep off (a window narrower than one step) this is HillClimb alone.
+MatchResult MatchWithHeadingSearch(const LikelihoodField& field, const MatchPoints& points,
+                                   const Pose2& start, const HillClimbingOptions& matcher,
+                                   const HeadingSearchOptions& options, double heading_sigma);
 
 }  // namespace semchain::mapping

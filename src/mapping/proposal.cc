@@ -36,32 +36,19 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
   ProposalEvaluation evaluation;
   const Pose2 prediction = MotionModel::Predict(previous, increment);
   evaluation.mode = prediction;
-  double window_xy = 3.0 * motion.Sigmas(increment).x();
-  double window_theta = 3.0 * motion.Sigmas(increment).z();
+  const Eigen::Vector3d motion_sigmas = motion.Sigmas(increment);
+  double window_xy = 3.0 * motion_sigmas.x();
+  double window_theta = 3.0 * motion_sigmas.z();
   if (options.use_scan_matching) {
     const Pose2 start =
         options.match_from_motion_sample ? motion.Sample(previous, increment, rng) : prediction;
-    MatchResult match = HillClimb(field, points, start, matcher);
-    const double heading_window =
-        std::min(options.heading_search.max_window_radians,
-                 options.heading_search.window_sigmas * motion.Sigmas(increment).z());
-    if (heading_window >= options.heading_search.step_radians) {
-      const HeadingSearchResult swept =
-          SearchHeading(field, points, start, heading_window, options.heading_search.step_radians);
-      if (std::abs(AngleDifference(swept.pose.theta, match.pose.theta)) >
-          matcher.angular_step_radians) {
-        const MatchResult other = HillClimb(field, points, swept.pose, matcher);
-        if (other.evaluation.score >
-            options.heading_search.min_score_ratio * match.evaluation.score) {
-          match = other;
-        }
-      }
-    }
+    const MatchResult match = MatchWithHeadingSearch(field, points, start, matcher,
+                                                     options.heading_search, motion_sigmas.z());
     evaluation.matched = match.evaluation.matched >= options.min_matched_points;
     if (evaluation.matched) {
       evaluation.mode = match.pose;
       if (options.mode_refinement.enabled) {
-        const PosePrior prior{prediction, motion.Sigmas(increment)};
+        const PosePrior prior{prediction, motion_sigmas};
         evaluation.mode =
             RefineOnSurface(field, points, match.pose, options.mode_refinement, &prior).pose;
       }

@@ -2,7 +2,8 @@
 # make_fixture.sh SEMCHAIN SOURCE_DIR WORK: what the node tests play. The map of
 # two_similar_rooms from its mapping run (simulate → slam → semantic, as a user builds one); a
 # trial in room A where laser-only AMCL fails (it settles 0.5 m / 43° off), exported as a bag
-# without images; a trial in room B; and both spliced into a kidnap bag (A, then carried to B).
+# without images; a trial in room B; both spliced into a kidnap bag (A, then carried to B); and
+# the mapping run as a bag without images (the mapping mode's tests).
 set -euo pipefail
 semchain="$1"
 source_dir="$2"
@@ -17,8 +18,9 @@ mkdir -p "$work"
   --seed 11 >/dev/null
 "$semchain" simulate --world "$world" --out "$work/room_b" --route trial --start 8.3,3.6,2.0 \
   --seed 12 >/dev/null
+"$semchain" bag export "$work/mapping" --out "$work/mapping.bag" --no-images >/dev/null
 "$semchain" bag export "$work/room_a" --out "$work/room_a.bag" --no-images >/dev/null
 "$semchain" bag export "$work/room_b" --out "$work/room_b.bag" --no-images >/dev/null
 /usr/bin/python3 "$source_dir/tests/ros/splice_bags.py" "$work/room_a.bag" "$work/room_b.bag" \
   --out "$work/kidnap.bag" >"$work/kidnap_at.txt"
-echo "fixture: map, room_a.bag, room_b.bag, kidnap.bag (kidnap at $(cat "$work/kidnap_at.txt") s)"
+echo "fixture: map, mapping.bag, room_a.bag, room_b.bag, kidnap.bag (kidnap at $(cat "$work/kidnap_at.txt") s)"

@@ -1,20 +1,18 @@
 #!/usr/bin/env bash
-# mapping_test.sh SEMCHAIN SEMCHAIN_ROS SOURCE_DIR WORK [RATE]: the node's mapping mode end to
-# end. Exports the fixture's mapping run of two_similar_rooms (WORK/mapping) as a bag without
-# images, plays it at RATE (default 2) into semchain_ros _mode:=mapping _out:=WORK/live_map
+# mapping_test.sh SEMCHAIN_ROS SOURCE_DIR WORK [RATE]: the node's mapping mode end to end.
+# Plays the fixture's mapping run of two_similar_rooms (WORK/mapping.bag, no images) at RATE
+# (default 2) into semchain_ros _mode:=mapping _out:=WORK/live_map
 # (tests/ros/mapping_checker.py: objects on /semchain/objects before the bag ends, then
 # /semchain/save_map), scores the saved semantic.json against the world (precision and recall
 # >= 0.97, tests/ros/score_semantic.py), then localizes the room A trial bag on that map in the
 # default mode (node_test.sh: the last /amcl_pose within 0.25 m and 10°).
 set -euo pipefail
-semchain="$1"
-node="$2"
-source_dir="$3"
-work="$4"
-rate="${5:-2}"
+node="$1"
+source_dir="$2"
+work="$3"
+rate="${4:-2}"
 name=mapping
 out="$work/live_map"
-"$semchain" bag export "$work/mapping" --out "$work/mapping.bag" --no-images >/dev/null
 rm -rf "$out"
 (
   source "$source_dir/tests/ros/ros_env.sh"
