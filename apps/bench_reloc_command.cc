@@ -1,5 +1,5 @@
 // semchain bench reloc --world W.yaml [--live-world W2.yaml] --trials N --seed S
-//                      --methods M1,M2,... --out DIR
+//                      --methods M1,M2,... [--detector M.onnx] --out DIR
 // The papers' relocalization experiment (DESIGN.md §4): map from a simulated mapping run of
 // --world (SLAM + semantic mapping), trials at random poses in the trial region of --live-world;
 // writes DIR/results.json and DIR/results.md.
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/semantic_outputs.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "eval/reloc_benchmark.h"
@@ -24,6 +25,7 @@ struct BenchRelocArgs {
   std::string live_world;
   std::string out;
   eval::RelocBenchmarkOptions options;
+  DetectorArgs detector;  // a YOLOv8-format ONNX model instead of the simulator's detections
   int seed = 1;
 };
 
@@ -32,6 +34,12 @@ int RunBenchReloc(BenchRelocArgs args) {
   const Status writable = EnsureWritableDirectory(out);
   if (!writable.ok()) return ReportError(writable);
   args.options.seed = static_cast<std::uint64_t>(args.seed);
+  if (!args.detector.model.empty()) {
+    Result<RunDetectorFunction> detect = LoadRunDetector(args.detector, /*show_progress=*/false);
+    if (!detect.ok()) return ReportError(detect.status());
+    args.options.detect = std::move(*detect);
+    args.options.detections_source = args.detector.model;
+  }
   std::optional<ProgressBar> bar;
   const Result<eval::RelocBenchmarkResult> result =
       eval::RunRelocBenchmark(args.world, args.live_world.empty() ? args.world : args.live_world,
@@ -80,6 +88,8 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
                     "semantic-scanmatch: no single-object hypotheses before the whole-map search");
   command->add_flag("!--no-lock-recheck", args->options.method.recheck_lock,
                     "semantic-scanmatch: do not re-check the lock against later frames' objects");
+  AddDetectorOptions(command, &args->detector,
+                     "the simulator's detection model (the mapping run's and every trial's)");
   command->add_option("--out", args->out, "Output folder (results.json, results.md)")->required();
   command->callback([args, &exit_code] { exit_code = RunBenchReloc(*args); });
 }

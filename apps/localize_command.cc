@@ -1,4 +1,5 @@
 // semchain localize --map MAP --run RUN --method METHOD [--out R.json] [--png P.png] [--seed S]
+//                   [--detector M.onnx]
 // Runs one relocalization method (DESIGN.md §4) over a recorded run (its scans, odometry and
 // camera detections) on a map with its semantic map; prints (and writes) the result as JSON,
 // scored against RUN/truth.txt when the run has one, and draws it (particles converging).
@@ -11,6 +12,7 @@
 
 #include "apps/command.h"
 #include "apps/reloc_drawing.h"
+#include "apps/semantic_outputs.h"
 #include "bow/bow_occlusion.h"
 #include "core/angles.h"
 #include "core/atomic_file.h"
@@ -35,7 +37,8 @@ struct LocalizeArgs {
   std::string method;
   std::string out;
   std::string png;
-  std::string vocab;  // semantic-amcl-bow
+  std::string vocab;      // semantic-amcl-bow
+  DetectorArgs detector;  // a YOLOv8-format ONNX model instead of RUN/detections.jsonl
   int seed = 1;
 };
 
@@ -67,7 +70,12 @@ Status RunLocalize(const LocalizeArgs& args) {
     Result<CameraInfo> camera = ReadCameraYaml(run / "camera.yaml");
     if (!camera.ok()) return camera.status();
     inputs.camera = camera->camera;
-    Result<std::vector<FrameDetections>> frames = ReadDetectionsJsonl(run / "detections.jsonl");
+    const std::string source = args.detector.model.empty()
+                                   ? (run / "detections.jsonl").string()
+                                   : args.detector.model + " on " + (run / "frames").string();
+    Result<std::vector<FrameDetections>> frames =
+        args.detector.model.empty() ? ReadDetectionsJsonl(run / "detections.jsonl")
+                                    : DetectWithModel(args.detector, run);
     if (!frames.ok()) return frames.status();
     std::size_t detections = 0;
     for (const FrameDetections& frame : *frames) {
@@ -75,8 +83,8 @@ Status RunLocalize(const LocalizeArgs& args) {
       inputs.frames.push_back({frame.stamp, frame.detections, ColorImagePath(run, frame.frame)});
     }
     if (detections == 0) {
-      return Status::Error((run / "detections.jsonl").string() + ": no detections at all: " +
-                           args.method + " needs objects in view (use amcl or scanmatch-global)");
+      return Status::Error(source + ": no detections at all: " + args.method +
+                           " needs objects in view (use amcl or scanmatch-global)");
     }
   }
   localization::LocalizerMap reloc_map(*map, *semantic, localization::AmclOptions(),
@@ -151,6 +159,7 @@ void AddLocalizeCommand(CLI::App& app, int& exit_code) {
   command->add_option("--vocab", args->vocab,
                       "Vocabulary (semchain vocab train) for semantic-amcl-bow; the keyframes are "
                       "MAP/keyframes.json");
+  AddDetectorOptions(command, &args->detector, "reading RUN/detections.jsonl");
   command->add_option("--seed", args->seed, "Seed of the filters")->capture_default_str();
   command->callback([args, &exit_code] {
     const Status status = RunLocalize(*args);

@@ -95,14 +95,7 @@ void AddSemanticCommand(CLI::App& app, int& exit_code) {
                       "Trajectory posing the frames (default: MAP/trajectory.txt)");
   command->add_option("--out", args->out, "Output directory (usually the map directory)")
       ->required();
-  command->add_option("--detector", args->detector.model,
-                      "YOLOv8-format ONNX model to run on the frames instead of reading "
-                      "RUN/detections.jsonl (class names from M.names beside it)");
-  command->add_option("--classes", args->detector.classes, "Class-names file of --detector");
-  command
-      ->add_option("--detector-input", args->detector.input,
-                   "Network input WIDTHxHEIGHT of --detector (multiples of 32)")
-      ->capture_default_str();
+  AddDetectorOptions(command, &args->detector, "reading RUN/detections.jsonl");
   command->add_option("--scale", args->scale, "Pixels per metre of semantic.png")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1000.0));

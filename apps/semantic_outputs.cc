@@ -50,18 +50,39 @@ Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMa
   return sim::WritePng(canvas->Compose(), path);
 }
 
-Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
-                                                     const fs::path& run) {
+void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string& what) {
+  command->add_option("--detector", args->model,
+                      "YOLOv8-format ONNX model run on the rendered frames instead of " + what +
+                          " (class names from M.names beside it)");
+  command->add_option("--classes", args->classes, "Class-names file of --detector");
+  command
+      ->add_option("--detector-input", args->input,
+                   "Network input WIDTHxHEIGHT of --detector (multiples of 32)")
+      ->capture_default_str();
+}
+
+Result<RunDetectorFunction> LoadRunDetector(const DetectorArgs& args, bool show_progress) {
   detection::YoloOptions options;
   SEMCHAIN_RETURN_IF_ERROR(detection::ParseInputSize(args.input, &options));
   std::string invalid;
   if (!options.Validate(&invalid)) return Status::Error("--detector-input: " + invalid);
-  Result<std::unique_ptr<detection::YoloDetector>> detector =
+  Result<std::unique_ptr<detection::YoloDetector>> loaded =
       detection::LoadYoloDetector(args.model, args.classes, options);
-  if (!detector.ok()) return detector.status();
+  if (!loaded.ok()) return loaded.status();
+  // std::function must be copyable: the detector is shared by the copies.
+  std::shared_ptr<detection::YoloDetector> detector = std::move(*loaded);
   detection::RunDetectionOptions run_options;
-  run_options.show_progress = true;
-  return detection::DetectRunFrames(**detector, run, run_options);
+  run_options.show_progress = show_progress;
+  return RunDetectorFunction([detector, run_options](const fs::path& run) {
+    return detection::DetectRunFrames(*detector, run, run_options);
+  });
+}
+
+Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
+                                                     const fs::path& run) {
+  Result<RunDetectorFunction> detect = LoadRunDetector(args, /*show_progress=*/true);
+  if (!detect.ok()) return detect.status();
+  return (*detect)(run);
 }
 
 Status WriteSemanticOutputs(const fs::path& out, const mapping::MapImage& map,

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,18 @@ struct DetectorArgs {
   std::string classes;
   std::string input = "320x256";
 };
+
+// Adds --detector, --classes and --detector-input to 'command'; 'what' says what the model's
+// detections replace (for --help).
+void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string& what);
+
+// Detects the frames of a run directory (RUN/camera.yaml, RUN/frames/).
+using RunDetectorFunction =
+    std::function<Result<std::vector<FrameDetections>>(const std::filesystem::path& run)>;
+
+// The model of 'args' loaded once (its input size, classes and output checked now), as a
+// function that detects the frames of any run; 'show_progress' draws a bar per run.
+Result<RunDetectorFunction> LoadRunDetector(const DetectorArgs& args, bool show_progress);
 
 // The detections of the run's frames by the model of 'args'.
 Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,

@@ -67,7 +67,16 @@ Result<std::shared_ptr<const bow::KeyframeRecognizer>> BuildRecognizer(const Bui
       std::make_shared<bow::KeyframeRecognizer>(std::move(*recognizer)));
 }
 
-Result<BuiltMap> BuildMap(const sim::World& world, std::uint64_t seed, const fs::path& run) {
+// The run's detections: options.detect's, or the simulator's RUN/detections.jsonl.
+Result<std::vector<FrameDetections>> RunDetections(const RelocBenchmarkOptions& options,
+                                                   const fs::path& run) {
+  if (options.detect) return options.detect(run);
+  return ReadDetectionsJsonl(run / "detections.jsonl");
+}
+
+Result<BuiltMap> BuildMap(const sim::World& world, const RelocBenchmarkOptions& options,
+                          const fs::path& run) {
+  const std::uint64_t seed = options.seed;
   sim::SimulationOptions simulation;
   simulation.seed = seed;
   simulation.show_progress = false;
@@ -90,6 +99,11 @@ Result<BuiltMap> BuildMap(const sim::World& world, std::uint64_t seed, const fs:
   inputs.run_dir = run;
   inputs.occupancy = built.occupancy;
   inputs.trajectory = slam.trajectory;
+  if (options.detect) {
+    Result<std::vector<FrameDetections>> detections = options.detect(run);
+    if (!detections.ok()) return detections.status();
+    inputs.detections = std::move(*detections);
+  }
   Result<semantic::SemanticMappingResult> mapped =
       semantic::MapRun(inputs, semantic::SemanticMapOptions());
   if (!mapped.ok()) return mapped.status();
@@ -170,7 +184,7 @@ Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& s
   Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
   if (!scans.ok()) return scans.status();
   data.inputs.scans = std::move(*scans);
-  Result<std::vector<FrameDetections>> frames = ReadDetectionsJsonl(run / "detections.jsonl");
+  Result<std::vector<FrameDetections>> frames = RunDetections(options, run);
   if (!frames.ok()) return frames.status();
   for (const FrameDetections& frame : *frames) {
     data.inputs.frames.push_back({frame.stamp, frame.detections, ColorImagePath(run, frame.frame)});
@@ -188,32 +202,14 @@ Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& s
   return data;
 }
 
-namespace {
-
-struct TrialOutcome {
-  bool success = false;
-  bool localized = false;
-  double final_error_m = 0.0;
-  double final_error_rad = 0.0;
-  double time = 0.0;
-  double cpu = 0.0;
-  double search_cpu = 0.0;
-  int iterations = 0;
-  double error_m = 0.0;
-  double error_rad = 0.0;
-  bool prelocalized = false;
-  Eigen::Vector2d prelocalization_error = Eigen::Vector2d::Zero();
-  double prelocalization_error_rad = 0.0;
-};
-
-TrialOutcome Score(const RelocTrace& trace, const RelocTrialRun& trial,
-                   const RelocBenchmarkOptions& options) {
-  TrialOutcome outcome;
+RelocTrialOutcome ScoreRelocTrace(const RelocTrace& trace, const std::vector<StampedPose>& truth,
+                                  const RelocBenchmarkOptions& options) {
+  RelocTrialOutcome outcome;
   const std::size_t n = trace.estimates.size();
   const auto within = [&](std::size_t i) {
     if (!trace.estimates[i]) return false;
     const Pose2& e = *trace.estimates[i];
-    const Pose2& t = trial.truth[i].pose;
+    const Pose2& t = truth[i].pose;
     return (e.translation() - t.translation()).norm() <= options.success_distance &&
            std::abs(NormalizeAngle(e.theta - t.theta)) <= options.success_heading;
   };
@@ -225,7 +221,7 @@ TrialOutcome Score(const RelocTrace& trace, const RelocTrialRun& trial,
   }
   if (trace.prelocalization && trace.prelocalization_scan >= 0) {
     outcome.prelocalized = true;
-    const Pose2& t = trial.truth[static_cast<std::size_t>(trace.prelocalization_scan)].pose;
+    const Pose2& t = truth[static_cast<std::size_t>(trace.prelocalization_scan)].pose;
     outcome.prelocalization_error =
         (trace.prelocalization->translation() - t.translation()).cwiseAbs();
     outcome.prelocalization_error_rad =
@@ -234,25 +230,43 @@ TrialOutcome Score(const RelocTrace& trace, const RelocTrialRun& trial,
   if (n > 0 && trace.estimates.back()) {
     outcome.localized = true;
     const Pose2& e = *trace.estimates.back();
-    const Pose2& t = trial.truth.back().pose;
+    const Pose2& t = truth.back().pose;
     outcome.final_error_m = (e.translation() - t.translation()).norm();
     outcome.final_error_rad = std::abs(NormalizeAngle(e.theta - t.theta));
   }
-  if (first == n) return outcome;
-  outcome.time = trial.truth[first].timestamp - trial.truth.front().timestamp;
-  if (outcome.time > options.time_limit) return outcome;
+  // A failed trial is charged what the method spent over the whole time it had: the trial up
+  // to the time limit.
+  const auto charge_until = [&](std::size_t last) {
+    outcome.time = truth[last].timestamp - truth.front().timestamp;
+    outcome.cpu = trace.cpu_seconds[last];
+    outcome.search_cpu = trace.search_cpu_seconds[last];
+  };
+  const auto charge_failure = [&] {
+    if (n == 0) return;
+    std::size_t last = 0;
+    while (last + 1 < n &&
+           truth[last + 1].timestamp - truth.front().timestamp <= options.time_limit) {
+      ++last;
+    }
+    charge_until(last);
+  };
+  if (first == n || truth[first].timestamp - truth.front().timestamp > options.time_limit) {
+    charge_failure();
+    return outcome;
+  }
+  charge_until(first);
   outcome.success = true;
-  outcome.cpu = trace.cpu_seconds[first];
-  outcome.search_cpu = trace.search_cpu_seconds[first];
   outcome.iterations = trace.iterations[first];
   const Pose2& e = *trace.estimates.back();
-  const Pose2& t = trial.truth.back().pose;
+  const Pose2& t = truth.back().pose;
   outcome.error_m = (e.translation() - t.translation()).norm();
   outcome.error_rad = std::abs(NormalizeAngle(e.theta - t.theta));
   return outcome;
 }
 
-void Accumulate(const TrialOutcome& outcome, RelocMethodStats* stats) {
+namespace {
+
+void Accumulate(const RelocTrialOutcome& outcome, RelocMethodStats* stats) {
   ++stats->trials;
   if (outcome.prelocalized) {
     ++stats->prelocalized;
@@ -260,6 +274,9 @@ void Accumulate(const TrialOutcome& outcome, RelocMethodStats* stats) {
     stats->prelocalization_error_y_m += outcome.prelocalization_error.y();
     stats->prelocalization_error_deg += outcome.prelocalization_error_rad * 180.0 / M_PI;
   }
+  stats->mean_time_all_s += outcome.time;
+  stats->mean_cpu_all_ms += 1000.0 * outcome.cpu;
+  stats->mean_search_cpu_all_ms += 1000.0 * outcome.search_cpu;
   if (!outcome.success) return;
   ++stats->successes;
   stats->mean_time_s += outcome.time;
@@ -272,6 +289,11 @@ void Accumulate(const TrialOutcome& outcome, RelocMethodStats* stats) {
 
 void Finish(RelocMethodStats* stats) {
   stats->success_rate = stats->trials > 0 ? double(stats->successes) / stats->trials : 0.0;
+  if (stats->trials > 0) {
+    stats->mean_time_all_s /= stats->trials;
+    stats->mean_cpu_all_ms /= stats->trials;
+    stats->mean_search_cpu_all_ms /= stats->trials;
+  }
   if (stats->successes > 0) {
     const double n = stats->successes;
     stats->mean_time_s /= n;
@@ -327,7 +349,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
     }
   } cleanup{work};
 
-  Result<BuiltMap> built = BuildMap(*world, options.seed, work / "mapping");
+  Result<BuiltMap> built = BuildMap(*world, options, work / "mapping");
   if (!built.ok()) return built.status();
   if (built->semantic.objects.empty()) {
     return Status::Error(world_path.string() + ": the mapping run found no objects");
@@ -353,6 +375,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   RelocBenchmarkResult result;
   result.world = world_path.string();
   result.live_world = live_world_path.string();
+  result.detections_source = options.detect ? options.detections_source : "simulator";
   result.trials = options.trials;
   result.seed = options.seed;
   result.map_objects = static_cast<int>(built->semantic.objects.size());
@@ -366,7 +389,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
     for (const std::string& method : options.methods) {
       const RelocTrace trace = RunRelocMethod(*localization::ParseLocalizationMethod(method), map,
                                               options.method, trial->inputs);
-      const TrialOutcome outcome = Score(trace, *trial, options);
+      const RelocTrialOutcome outcome = ScoreRelocTrace(trace, trial->truth, options);
       Accumulate(outcome, &result.methods[method]);
       const Pose2& start = (*starts)[static_cast<std::size_t>(k)];
       RelocTrialRecord record;
@@ -406,6 +429,9 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                      {"mean_time_s", s.mean_time_s},
                      {"mean_cpu_ms", s.mean_cpu_ms},
                      {"mean_search_cpu_ms", s.mean_search_cpu_ms},
+                     {"mean_time_all_s", s.mean_time_all_s},
+                     {"mean_cpu_all_ms", s.mean_cpu_all_ms},
+                     {"mean_search_cpu_all_ms", s.mean_search_cpu_all_ms},
                      {"mean_iterations", s.mean_iterations},
                      {"mean_error_m", s.mean_error_m},
                      {"mean_error_deg", s.mean_error_deg},
@@ -440,6 +466,7 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
   }
   const nlohmann::json root = {{"world", result.world},
                                {"live_world", result.live_world},
+                               {"detections", result.detections_source},
                                {"trials", result.trials},
                                {"seed", result.seed},
                                {"map_objects", result.map_objects},
@@ -454,26 +481,36 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
                      result.live_world + "`, " + std::to_string(result.trials) + " trials, seed " +
                      std::to_string(result.seed) + "; map from SLAM (ATE " +
                      std::to_string(result.map_ate_m) + " m), " +
-                     std::to_string(result.map_objects) + " objects\n\n";
+                     std::to_string(result.map_objects) +
+                     " objects; detections: " + result.detections_source + "\n\n";
   text +=
-      "| method | success | mean time (s) | mean CPU (ms) | search CPU (ms) | iterations "
-      "| error (m) | error (deg) | pre-localization error x / y (m) |\n"
-      "|---|---|---|---|---|---|---|---|---|\n";
+      "Time, CPU and search CPU: means over the successful trials (until convergence), then "
+      "over all trials (a failed trial charged for its whole time, up to the limit).\n\n"
+      "| method | success | mean time (s) | mean CPU (ms) | search CPU (ms) | all trials: "
+      "time (s) / CPU (ms) / search CPU (ms) | iterations | error (m) | error (deg) "
+      "| pre-localization error x / y (m) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [name, s] : result.methods) {
-    char search_cpu[32];
-    std::snprintf(search_cpu, sizeof(search_cpu), "%.2f", s.mean_search_cpu_ms);
-    char line[400];
-    std::snprintf(
-        line, sizeof(line),
-        "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %s | %.1f | %.3f | %.2f | %s |\n", name.c_str(),
-        s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s, s.mean_cpu_ms,
-        localization::IsScanMatcherMethod(*localization::ParseLocalizationMethod(name)) ? search_cpu
-                                                                                        : "–",
-        s.mean_iterations, s.mean_error_m, s.mean_error_deg,
-        s.prelocalized > 0 ? (std::to_string(s.prelocalization_error_x_m).substr(0, 5) + " / " +
-                              std::to_string(s.prelocalization_error_y_m).substr(0, 5))
-                                 .c_str()
-                           : "–");
+    const bool scan_matcher =
+        localization::IsScanMatcherMethod(*localization::ParseLocalizationMethod(name));
+    char search_cpu[32] = "–";
+    char search_cpu_all[32] = "–";
+    if (scan_matcher) {
+      std::snprintf(search_cpu, sizeof(search_cpu), "%.2f", s.mean_search_cpu_ms);
+      std::snprintf(search_cpu_all, sizeof(search_cpu_all), "%.2f", s.mean_search_cpu_all_ms);
+    }
+    char prelocalization[64] = "–";
+    if (s.prelocalized > 0) {
+      std::snprintf(prelocalization, sizeof(prelocalization), "%.3f / %.3f",
+                    s.prelocalization_error_x_m, s.prelocalization_error_y_m);
+    }
+    char line[512];
+    std::snprintf(line, sizeof(line),
+                  "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %s | %.2f / %.1f / %s | %.1f | %.3f | "
+                  "%.2f | %s |\n",
+                  name.c_str(), s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s,
+                  s.mean_cpu_ms, search_cpu, s.mean_time_all_s, s.mean_cpu_all_ms, search_cpu_all,
+                  s.mean_iterations, s.mean_error_m, s.mean_error_deg, prelocalization);
     text += line;
   }
   return text;

@@ -38,6 +38,11 @@ struct RelocBenchmarkOptions {
   localization::LocalizerOptions method;
   // Where the runs are made (removed afterwards); a temporary directory when empty.
   std::filesystem::path work_dir;
+  // Detects the objects in a run's rendered frames (the mapping run's and every trial's), e.g.
+  // an ONNX detector; empty: the simulator's detection model (RUN/detections.jsonl).
+  std::function<Result<std::vector<FrameDetections>>(const std::filesystem::path& run)> detect;
+  // Names the source of the detections in the results ("simulator" when 'detect' is empty).
+  std::string detections_source = "simulator";
 };
 
 struct RelocMethodStats {
@@ -50,7 +55,11 @@ struct RelocMethodStats {
   // Scan-matcher methods: the part of it spent searching (RelocTrace::search_cpu_seconds).
   double mean_search_cpu_ms = 0.0;
   double mean_iterations = 0.0;  // filter updates / matcher runs until convergence
-  double mean_error_m = 0.0;     // at the end of the trial
+  // Over all trials, a failed one charged for the whole time it had (up to the time limit).
+  double mean_time_all_s = 0.0;
+  double mean_cpu_all_ms = 0.0;
+  double mean_search_cpu_all_ms = 0.0;
+  double mean_error_m = 0.0;  // at the end of the trial
   double mean_error_deg = 0.0;
   // Semantic methods: error of the first pre-localization (best hypothesis), mean |x| and |y|.
   int prelocalized = 0;
@@ -64,8 +73,10 @@ struct RelocTrialRecord {
   int trial = 0;
   double start[3] = {0.0, 0.0, 0.0};  // x, y, θ
   bool success = false;
-  double time_s = 0.0;         // when successful
-  double cpu_ms = 0.0;         // until convergence, when successful
+  // Simulated time and CPU until convergence; for a failed trial, over the whole time it had
+  // (the trial up to the time limit).
+  double time_s = 0.0;
+  double cpu_ms = 0.0;
   double search_cpu_ms = 0.0;  // the part of it spent searching (scan-matcher methods)
   bool localized = false;      // an estimate at the end
   double error_m = 0.0;        // at the end (when localized)
@@ -79,6 +90,7 @@ struct RelocTrialRecord {
 struct RelocBenchmarkResult {
   std::string world;
   std::string live_world;
+  std::string detections_source;
   int trials = 0;
   std::uint64_t seed = 0;
   int map_objects = 0;
@@ -97,6 +109,30 @@ struct RelocTrialRun {
 Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& start,
                                          std::uint64_t seed, const RelocBenchmarkOptions& options,
                                          const std::filesystem::path& run);
+
+// How one method did on one trial.
+struct RelocTrialOutcome {
+  // The estimate came within the tolerance within the time limit and stayed there to the end.
+  bool success = false;
+  bool localized = false;  // an estimate at the end, and its error
+  double final_error_m = 0.0;
+  double final_error_rad = 0.0;
+  // Simulated time (s), CPU (s) and search CPU (s) until convergence; for a failed trial, what
+  // the method spent over the whole time it had (the trial up to the time limit).
+  double time = 0.0;
+  double cpu = 0.0;
+  double search_cpu = 0.0;
+  int iterations = 0;    // until convergence (successful trials)
+  double error_m = 0.0;  // at the end (successful trials)
+  double error_rad = 0.0;
+  bool prelocalized = false;  // the first pre-localization's |x|, |y| and |θ| error
+  Eigen::Vector2d prelocalization_error = Eigen::Vector2d::Zero();
+  double prelocalization_error_rad = 0.0;
+};
+
+// Scores 'trace' against 'truth' (one pose per scan) with the options' tolerances and limit.
+RelocTrialOutcome ScoreRelocTrace(const RelocTrace& trace, const std::vector<StampedPose>& truth,
+                                  const RelocBenchmarkOptions& options);
 
 // 'progress' (may be empty) is called with (trials done, trials).
 Result<RelocBenchmarkResult> RunRelocBenchmark(const std::filesystem::path& world,
