@@ -75,7 +75,6 @@ IncrementalSlam::IncrementalSlam(const SlamOptions& options)
       slam_(options.rbpf) {}
 
 SlamStep IncrementalSlam::AddScan(const StampedScan& raw) {
-  SEMCHAIN_CHECK(scans_.empty() || raw.scan.size() == scans_.front().scan.size());
   auto start = std::chrono::steady_clock::now();
   prepared_.push_back(PrepareScan(raw.scan, raw.LaserOffset(), options_.rbpf.scan));
   StampedScan scan = raw;

@@ -51,7 +51,7 @@ class IncrementalSlam {
   IncrementalSlam(const IncrementalSlam&) = delete;
   IncrementalSlam& operator=(const IncrementalSlam&) = delete;
 
-  // Adds the next scan (its timestamp not before the last one's; the beam count of the first).
+  // Adds the next scan (its timestamp not before the last one's; any beam geometry).
   // The step refers to this object and is valid until the next call.
   SlamStep AddScan(const StampedScan& scan);
 

@@ -7,19 +7,18 @@ Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std:
                                               ReversedOdometryRepair* repair) {
   if (log.records.empty()) return Status::Error(source + ": empty log (no records)");
   std::vector<StampedScan> scans;
+  // Each scan keeps its own geometry: an interlaced laser (fr-clinic) cycles its start angle
+  // and beam count from scan to scan.
   for (const carmen::Laser* laser : log.Lasers()) {
-    if (!scans.empty() && laser->scan.scan.size() != scans.front().scan.size()) {
-      return Status::Error(source + ": laser scan " + std::to_string(scans.size() + 1) + " has " +
-                           std::to_string(laser->scan.scan.size()) + " beams, the first has " +
-                           std::to_string(scans.front().scan.size()) +
-                           " (inconsistent beam counts)");
+    if (laser->scan.scan.size() == 0) {
+      return Status::Error(source + ": laser scan " + std::to_string(scans.size() + 1) +
+                           " has no beams");
     }
     scans.push_back(laser->scan);
   }
   if (scans.empty()) {
     return Status::Error(source + ": no laser scans (FLASER or ROBOTLASER1 lines) in the log");
   }
-  if (scans.front().scan.size() == 0) return Status::Error(source + ": laser scans have no beams");
   if (repair != nullptr) *repair = RepairReversedOdometry(log.Odometries(), &scans);
   return scans;
 }

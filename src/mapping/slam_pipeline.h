@@ -16,8 +16,10 @@
 // then a pose for every scan in the final map, then the final map.
 namespace semchain::mapping {
 
-// The laser scans of a log with their odometry. Errors (naming 'source'): no laser lines,
-// beam counts that change within the log, non-increasing timestamps are fine (kept as is).
+// The laser scans of a log with their odometry, each with its own beam geometry (start angle,
+// step and beam count may change from scan to scan, as an interlaced laser's do). Errors
+// (naming 'source'): no laser lines, a scan without beams; non-increasing timestamps are fine
+// (kept as is).
 // With 'repair' the odometry steps that move forward while the log's ODOM velocity says the
 // robot backs up are reversed (odometry_repair.h) and counted there.
 Result<std::vector<StampedScan>> ScansFromLog(const carmen::Log& log, const std::string& source,

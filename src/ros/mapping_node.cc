@@ -93,11 +93,6 @@ bool MappingNode::Acceptable(const StampedScan& scan) const {
                       scan.scan.timestamp, last.scan.timestamp);
     return false;
   }
-  if (scan.scan.size() != slam_.scans().front().scan.size()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: scan at %.3f s has %zu beams, the first had %zu; skipped",
-                      scan.scan.timestamp, scan.scan.size(), slam_.scans().front().scan.size());
-    return false;
-  }
   return true;
 }
 

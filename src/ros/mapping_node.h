@@ -37,7 +37,7 @@ namespace semchain::ros1 {
 struct MappingTimings {
   std::vector<double> cpu_ms;  // thread CPU per scan: SLAM and the semantic mapper
   int dropped_scans = 0;       // no odometry (tf) for them in time
-  int rejected_scans = 0;      // out of time order or of another beam count
+  int rejected_scans = 0;      // out of time order
   double first_stamp = -1.0;   // scan time span, for the real-time factor
   double last_stamp = -1.0;
   double wall_seconds = 0.0;  // wall time from the first scan to the last
@@ -70,7 +70,8 @@ class MappingNode {
   void OnDepthImage(const sensor_msgs::ImageConstPtr& message);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
 
-  // Whether 'scan' can follow the scans before it (time order, beam count); warns when not.
+  // Whether 'scan' can follow the scans before it (time order; any beam geometry); warns when
+  // not.
   bool Acceptable(const StampedScan& scan) const;
   void Feed(const StampedScan& scan);
   void AddFrame(FrameDetections frame, const cv::Mat& depth_m);

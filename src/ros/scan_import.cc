@@ -126,10 +126,6 @@ Status ScanConverter::Add(const sensor_msgs::LaserScan& msg, const std::string& 
     return Status::Error(where + ": range_max " + Number(imported.scan.max_range) + " and " +
                          std::to_string(imported.scan.ranges.size()) + " beams: not a scan");
   }
-  if (first_ && imported.scan.size() != first_->scan.scan.size()) {
-    return Status::Error(where + ": " + std::to_string(imported.scan.size()) +
-                         " beams, the first scan has " + std::to_string(first_->scan.scan.size()));
-  }
   const std::int64_t stamp_ns = Nanoseconds(msg.header.stamp);
   const double stamp = FromRosTime(msg.header.stamp, context_.stamp_offset_seconds);
   const carmen::Stamp log_stamp{stamp, "semchain", stamp};

@@ -34,8 +34,8 @@ using TruthByStamp = std::map<std::int64_t, Pose2>;
 // Reads the scans of 'context.options.topics.scan'. Odometry and the laser's mounting come from
 // 'transforms' (checked to connect odom, base and laser frames first: an error names the frames
 // tf knows). A scan whose odometry tf2 cannot give (before the first or after the last odometry)
-// is skipped and counted; no scan left, scans of different beam counts, or a tilted laser are
-// errors.
+// is skipped and counted; no scan left or a tilted laser are errors. Each scan keeps its own
+// beam geometry (an interlaced laser's start angle and beam count change from scan to scan).
 Result<ImportedLog> ImportScans(BagReader& reader, const BagTransforms& transforms,
                                 const TruthByStamp& truth, ImportContext& context);
 
