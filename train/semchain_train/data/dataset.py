@@ -171,11 +171,21 @@ def read_rgb(path: Path) -> np.ndarray:
     return cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)
 
 
+def sample_rng(seed: int, epoch: int, index: int) -> np.random.Generator:
+    """The generator of one training sample (stream 0 of the run's seed)."""
+    return np.random.default_rng((seed, 0, epoch, index))
+
+
+def epoch_order(seed: int, epoch: int, size: int) -> list[int]:
+    """The shuffled sample order of an epoch (stream 1 of the run's seed)."""
+    return [int(i) for i in np.random.default_rng((seed, 1, epoch)).permutation(size)]
+
+
 class DetectionDataset(torch.utils.data.Dataset):
     """One split. Labels are read (and checked) up front, images on demand.
 
-    Augmentation draws from np.random.default_rng((seed, epoch, index)): a sample depends on nothing
-    else, so runs are reproducible for any number of DataLoader workers and resume exactly.
+    Augmentation draws from sample_rng(seed, epoch, index): a sample depends on nothing else, so runs
+    are reproducible for any number of DataLoader workers and resume exactly.
     """
 
     def __init__(
@@ -226,7 +236,7 @@ class DetectionDataset(torch.utils.data.Dataset):
         if self.augment is None:
             return self.load_letterboxed(index)
         options = self.augment
-        rng = np.random.default_rng((self.seed, self.epoch, index))
+        rng = sample_rng(self.seed, self.epoch, index)
         if self.mosaic:
             others = [i for i in range(len(self)) if i != index]
             # Distinct partners when there are enough images, so an object appears once per mosaic.
