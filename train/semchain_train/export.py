@@ -46,6 +46,14 @@ def parse_size(text: str) -> tuple[int, int]:
     return width, height
 
 
+def size_argument(text: str) -> tuple[int, int]:
+    """parse_size for argparse's type=: a bad size is a one-line usage error."""
+    try:
+        return parse_size(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
 def _inline_identity_initializers(model) -> None:
     """torch's exporter shares equal initializers through Identity nodes, which OpenCV 4.6 cannot
     import; give each consumer its own copy instead."""
@@ -106,7 +114,7 @@ def write_names(path: Path, names: list[str]) -> None:
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--weights", type=Path, required=True, help="checkpoint (.pt) to export")
     parser.add_argument("--out", type=Path, required=True, help="ONNX file to write; M.names is written beside it")
-    parser.add_argument("--input", default="320x256", help="static network input WIDTHxHEIGHT (default 320x256)")
+    parser.add_argument("--input", type=size_argument, default=DEFAULT_INPUT, help="static network input WIDTHxHEIGHT (default 320x256)")
     parser.add_argument("--no-check", action="store_true", help="skip running the export through OpenCV DNN")
 
 
@@ -144,7 +152,7 @@ def check_with_opencv(model: nn.Module, path: Path, input_size: tuple[int, int],
 
 
 def run(args: argparse.Namespace) -> int:
-    input_size = parse_size(args.input)
+    input_size = args.input
     model, names = load_model_and_names(args.weights)
     export_onnx(model, args.out, input_size)
     write_names(args.out.with_suffix(".names"), names)
