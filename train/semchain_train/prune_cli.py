@@ -28,6 +28,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--lr0", type=float, help="fine-tuning initial learning rate (default: the checkpoint's)")
     parser.add_argument("--min-channels", type=int, default=d.min_channels, help=f"channels every group keeps at least (default {d.min_channels})")
     parser.add_argument("--min-fraction", type=float, default=d.min_fraction, help=f"fraction of its width every group keeps (default {d.min_fraction})")
+    parser.add_argument("--round-to", type=int, default=d.round_to, help=f"kept widths are multiples of this (default {d.round_to}: any)")
     parser.add_argument("--seed", type=int, default=0, help="fine-tuning seed (default 0)")
     parser.add_argument("--device", default="cpu", help="cpu | cuda | cuda:N (default cpu)")
     parser.add_argument("--workers", type=int, default=2, help="data loader processes (default 2)")
@@ -39,13 +40,14 @@ def _cost(cost) -> dict[str, Any]:
     return {"gflops": round(cost.gflops, 4), "parameters": cost.parameters}
 
 
-def _report(result: PruneResult, speedup: float, input_size: tuple[int, int], weights: Path) -> dict[str, Any]:
+def _report(result: PruneResult, speedup: float, input_size: tuple[int, int], weights: Path, round_to: int) -> dict[str, Any]:
     return {
         "weights": str(weights),
         "method": "LAMP (seed 000 eq. 1), structured output channels, global ranking",
         "requested_speedup": speedup,
         "achieved_speedup": round(result.speedup, 4),
         "input": f"{input_size[0]}x{input_size[1]}",
+        "round_to": round_to,
         "before": _cost(result.before),
         "after": _cost(result.after),
         "removed_channels": {name: len(channels) for name, channels in sorted(result.removed.items())},
@@ -73,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"{args.weights}: its model is not a semchain_train Detector (no channel groups to prune)")
     saved = checkpoint.raw.get("train_options") or {}
     input_size = args.input or (tuple(saved["input_size"]) if saved.get("input_size") else (320, 256))
-    options = PruneOptions(speedup=args.speedup, input_size=input_size, min_channels=args.min_channels, min_fraction=args.min_fraction)
+    options = PruneOptions(speedup=args.speedup, input_size=input_size, min_channels=args.min_channels, min_fraction=args.min_fraction, round_to=args.round_to)
     if args.data is not None:
         from .data.dataset import load_data_yaml
 
@@ -85,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
     result = prune(model, options)
     print(f"before: {result.before.parameters / 1e6:.3f} M parameters, {result.before.gflops:.3f} GFLOPs")
     print(f"after:  {result.after.parameters / 1e6:.3f} M parameters, {result.after.gflops:.3f} GFLOPs ({result.speedup:.3f}x)")
-    report = _report(result, args.speedup, input_size, args.weights)
+    report = _report(result, args.speedup, input_size, args.weights, args.round_to)
     args.out.mkdir(parents=True, exist_ok=True)
     save_checkpoint(args.out / "pruned.pt", model, names=names, epoch=-1, extra={"prune": report})
     if args.epochs > 0:

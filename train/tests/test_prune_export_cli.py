@@ -32,12 +32,16 @@ def test_prune_fine_tune_then_export(tmp_path: Path, capsys):
     weights = _checkpoint(tmp_path / "w.pt")
     run = tmp_path / "run"
     argv = ["prune", "--weights", str(weights), "--out", str(run), "--speedup", "2", "--data", str(_data(tmp_path / "d")),
-            "--epochs", "1", "--batch", "2", "--workers", "0", "--threads", "1", "--no-progress"]
+            "--epochs", "1", "--batch", "2", "--workers", "0", "--threads", "1", "--no-progress", "--round-to", "8"]
     assert main(argv) == 0
     report = json.loads((run / "prune.json").read_text())
     assert report["input"] == "64x64" and report["achieved_speedup"] >= 2.0
     pruned = load_checkpoint(run / "pruned.pt").model
     assert measure(pruned, (64, 64)).gflops == pytest.approx(report["after"]["gflops"], abs=1e-3)
+    widths = {g.name: g.size for g in load_checkpoint(weights).model.channel_groups()}
+    for group in pruned.channel_groups():  # --round-to 8: pruned widths are multiples of 8
+        assert group.size == widths[group.name] or group.size % 8 == 0
+    assert sum(report["removed_channels"].values()) > 0
     assert (run / "best.pt").is_file() and report["fine_tuned"]["epochs"] == 1
     tuned = load_checkpoint(run / "best.pt")
     assert tuned.names == CLASS_NAMES

@@ -18,13 +18,13 @@ from .fusion_ops import avg_pool_to, max_pool_to, spatial, upsample_to
 
 class TripleFeatureEncoding(nn.Module):
     """TFE: the larger scale (1x1 conv, then max + average pooled) and the smaller scale (1x1 conv,
-    nearest upsampled) brought to the medium scale and concatenated with it: [large, medium, small]."""
+    nearest upsampled) brought to the medium scale (c_out wide) and concatenated with it: [large, medium,
+    small]."""
 
-    def __init__(self, c_large: int, c_medium: int, c_small: int, c_out: int):
+    def __init__(self, c_large: int, c_small: int, c_out: int):
         super().__init__()
         self.large = Conv(c_large, c_out, 1)
         self.small = Conv(c_small, c_out, 1)
-        self.c_medium = c_medium
 
     def forward(self, large: torch.Tensor, medium: torch.Tensor, small: torch.Tensor) -> torch.Tensor:
         size = spatial(medium)

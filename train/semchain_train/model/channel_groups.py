@@ -16,9 +16,6 @@ from dataclasses import dataclass, field
 
 from torch import nn
 
-ConvLike = nn.Conv1d | nn.Conv2d | nn.Conv3d
-
-
 @dataclass
 class OutSlot:
     """Output channels offset..offset+size-1 of 'conv' (rows of its weight) and of its batch norm."""

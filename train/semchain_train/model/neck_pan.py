@@ -23,9 +23,9 @@ class PanNeck(nn.Module):
         c_p3, c_p4, c_n4, c_n5 = ch(256), ch(512), ch(512), ch(1024)
         self.tfe = tfe
         if tfe:
-            self.tfe4 = TripleFeatureEncoding(c3, c4, c5, c4)
+            self.tfe4 = TripleFeatureEncoding(c3, c5, c4)
             self.td4 = C2f(3 * c4, c_p4, n)
-            self.tfe3 = TripleFeatureEncoding(c2, c3, c_p4, c3)
+            self.tfe3 = TripleFeatureEncoding(c2, c_p4, c3)
             self.td3 = C2f(3 * c3, c_p3, n)
         else:
             self.td4 = C2f(c5 + c4, c_p4, n)
