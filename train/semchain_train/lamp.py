@@ -199,9 +199,13 @@ def _removal_plan(ranked: list[tuple[float, str, int]], count: int, sizes: dict[
     return plan
 
 
-def plan_pruning(model: nn.Module, options: PruneOptions) -> tuple[dict[str, list[int]], ModelCost, ModelCost]:
+def plan_pruning(
+    model: nn.Module, options: PruneOptions, progress: bool = False
+) -> tuple[dict[str, list[int]], ModelCost, ModelCost]:
     """The fewest lowest-LAMP channels whose removal reaches options.speedup (FLOPs measured on a
     copy). Raises ValueError when even the minimum widths do not reach it."""
+    from tqdm import tqdm
+
     if not options.speedup >= 1.0:
         raise ValueError(f"speed-up ratio {options.speedup}: expected at least 1.0")
     if options.round_to < 1:
@@ -220,27 +224,31 @@ def plan_pruning(model: nn.Module, options: PruneOptions) -> tuple[dict[str, lis
         return measure(trial, options.input_size)
 
     target = before.gflops / options.speedup
-    most = cost_after(len(ranked))
-    if most.gflops > target * (1 + 1e-9):
-        raise ValueError(
-            f"speed-up {options.speedup} unreachable: removing every prunable channel down to the minimum widths "
-            f"gives {before.gflops / most.gflops:.2f}"
-        )
-    # FLOPs fall monotonically with the number of channels removed: bisect for the fewest.
-    low, high, best = 0, len(ranked), most
-    while low < high:
-        middle = (low + high) // 2
-        cost = cost_after(middle)
-        if cost.gflops <= target * (1 + 1e-9):
-            high, best = middle, cost
-        else:
-            low = middle + 1
+    steps = math.ceil(math.log2(len(ranked) + 1)) + 1
+    with tqdm(total=steps, desc="LAMP search", unit="trial", disable=not progress) as bar:
+        most = cost_after(len(ranked))
+        bar.update()
+        if most.gflops > target * (1 + 1e-9):
+            raise ValueError(
+                f"speed-up {options.speedup} unreachable: removing every prunable channel down to the minimum widths "
+                f"gives {before.gflops / most.gflops:.2f}"
+            )
+        # FLOPs fall monotonically with the number of channels removed: bisect for the fewest.
+        low, high, best = 0, len(ranked), most
+        while low < high:
+            middle = (low + high) // 2
+            cost = cost_after(middle)
+            bar.update()
+            if cost.gflops <= target * (1 + 1e-9):
+                high, best = middle, cost
+            else:
+                low = middle + 1
     return plan_of(low), before, best
 
 
-def prune(model: nn.Module, options: PruneOptions | None = None) -> PruneResult:
+def prune(model: nn.Module, options: PruneOptions | None = None, progress: bool = False) -> PruneResult:
     """Prunes 'model' in place to options.speedup; returns the costs before and after."""
     options = options or PruneOptions()
-    plan, before, _ = plan_pruning(model, options)
+    plan, before, _ = plan_pruning(model, options, progress)
     remove_channels(model, plan)
     return PruneResult(before=before, after=measure(model, options.input_size), removed=plan)

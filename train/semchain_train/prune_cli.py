@@ -84,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"{args.weights}: its classes {names} are not {args.data}'s {spec.names}")
 
     print(f"pruning {args.weights} to a {args.speedup}x FLOPs speed-up at {input_size[0]}x{input_size[1]} (LAMP)")
-    result = prune(model, options)
+    result = prune(model, options, progress=not args.no_progress)
     print(f"before: {result.before.parameters / 1e6:.3f} M parameters, {result.before.gflops:.3f} GFLOPs")
     print(f"after:  {result.after.parameters / 1e6:.3f} M parameters, {result.after.gflops:.3f} GFLOPs ({result.speedup:.3f}x)")
     report = _report(result, args.speedup, input_size, args.weights, args.round_to)
