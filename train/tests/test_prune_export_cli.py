@@ -126,3 +126,15 @@ def test_checkpoint_and_onnx_give_the_same_boxes(tmp_path: Path):
             assert da["box"] == pytest.approx(db["box"], abs=1e-3)
             count += 1
     assert count > 0
+
+
+def test_reference_boxes_bad_input_is_one_line(tmp_path: Path, capsys):
+    from semchain_train.reference_boxes import main as reference_main
+
+    _checkpoint(tmp_path / "w.pt")
+    assert reference_main(["--model", str(tmp_path / "w.pt"), "--images", str(tmp_path / "none"), "--out", str(tmp_path / "b.json")]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "none: no such image or folder" in err
+    (tmp_path / "empty").mkdir()
+    assert reference_main(["--model", str(tmp_path / "missing.pt"), "--images", str(tmp_path / "empty"), "--out", str(tmp_path / "b.json")]) == 1
+    assert capsys.readouterr().err.count("\n") == 1
