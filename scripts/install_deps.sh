@@ -8,6 +8,8 @@ packages=(
   libeigen3-dev libopencv-dev libceres-dev libyaml-cpp-dev nlohmann-json3-dev
   libcli11-dev libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev zlib1g-dev
   clang-format
+  # train/: the detector's training package and its tests (Debian's PyTorch 1.13, CPU).
+  python3-torch python3-onnx python3-opencv python3-numpy python3-yaml python3-tqdm python3-pytest
 )
 # ROS 1 from Debian: roscpp, rosbag, tf2 and the message headers of DESIGN.md section 5.7, and
 # the command-line tools (rosbag, rostopic, rosservice, roslaunch) to use them on a robot.
@@ -17,7 +19,7 @@ ros_packages=(
   python3-rosbag python3-rostopic python3-rosservice python3-roslaunch
   # The node tests' checkers (tests/ros/node_checker.py, mapping_checker.py) are rospy nodes.
   python3-rospy python3-std-msgs python3-std-srvs python3-geometry-msgs python3-sensor-msgs
-  python3-nav-msgs python3-tf2-msgs python3-rosgraph-msgs python3-visualization-msgs python3-yaml
+  python3-nav-msgs python3-tf2-msgs python3-rosgraph-msgs python3-visualization-msgs
 )
 if [ "${1:-}" != "--no-ros" ]; then
   packages+=("${ros_packages[@]}")
