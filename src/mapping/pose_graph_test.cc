@@ -6,6 +6,7 @@
 
 #include "core/angles.h"
 #include "core/rng.h"
+#include "mapping/testing/synthetic_world.h"
 
 namespace semchain::mapping {
 namespace {
@@ -60,14 +61,6 @@ PoseGraphEdge Closure(const std::vector<Pose2>& truth, int from, int to, const P
   return edge;
 }
 
-double MaxError(const std::vector<Pose2>& poses, const std::vector<Pose2>& truth) {
-  double worst = 0.0;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    worst = std::max(worst, (poses[i].translation() - truth[i].translation()).norm());
-  }
-  return worst;
-}
-
 TEST(PoseGraphTest, WhitenedResidualOfAnAnalyticCase) {
   const std::vector<Pose2> poses = {Pose2(1.0, 2.0, M_PI / 2.0), Pose2(1.0, 4.0, M_PI)};
   PoseGraphEdge edge;
@@ -86,13 +79,13 @@ TEST(PoseGraphTest, LoopClosuresRemoveTheDrift) {
   const std::vector<Pose2> truth = SquareTruth();
   std::vector<Pose2> initial;
   std::vector<PoseGraphEdge> edges = DriftingOdometry(truth, &initial);
-  ASSERT_GT(MaxError(initial, truth), 2.0);
+  ASSERT_GT(testing::MaxPositionError(initial, truth), 2.0);
   // The second lap sees the first: a closure every 10 nodes.
   for (int i = 80; i < 160; i += 10) edges.push_back(Closure(truth, i - 80, i));
   const PoseGraphSolution solution = OptimizePoseGraph(initial, edges);
   EXPECT_TRUE(solution.converged);
   EXPECT_LT(solution.final_cost, 0.01 * solution.initial_cost);
-  EXPECT_LT(MaxError(solution.poses, truth), 0.3);
+  EXPECT_LT(testing::MaxPositionError(solution.poses, truth), 0.3);
   // The first node is the frame.
   EXPECT_EQ(solution.poses.front().x, truth.front().x);
   EXPECT_EQ(solution.poses.front().theta, truth.front().theta);
@@ -114,14 +107,16 @@ TEST(PoseGraphTest, TheRobustLossBoundsAWrongClosuresPull) {
   const std::vector<PoseGraphEdge> edges = EdgesWithAWrongClosure(truth, &initial);
   std::vector<PoseGraphEdge> right_only = edges;
   right_only.pop_back();
-  const double right = MaxError(OptimizePoseGraph(initial, right_only).poses, truth);
+  const double right =
+      testing::MaxPositionError(OptimizePoseGraph(initial, right_only).poses, truth);
   ASSERT_LT(right, 0.3);
 
   PoseGraphOptions squared;
   squared.loop_loss = RobustLoss::kNone;
-  const double bent = MaxError(OptimizePoseGraph(initial, edges, squared).poses, truth);
+  const double bent =
+      testing::MaxPositionError(OptimizePoseGraph(initial, edges, squared).poses, truth);
   const PoseGraphSolution huber = OptimizePoseGraph(initial, edges);
-  const double held = MaxError(huber.poses, truth);
+  const double held = testing::MaxPositionError(huber.poses, truth);
   EXPECT_GT(bent, 1.0);
   EXPECT_LT(held, 0.5 * bent);
   // The wrong edge is left far from satisfied: its residual gives it away.
@@ -135,7 +130,7 @@ TEST(PoseGraphTest, AContradictedClosureIsRejected) {
   const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(initial, edges, 5.0);
   ASSERT_EQ(gated.rejected.size(), 1u);
   EXPECT_EQ(gated.rejected.front(), static_cast<int>(edges.size()) - 1);
-  EXPECT_LT(MaxError(gated.solution.poses, truth), 0.3);
+  EXPECT_LT(testing::MaxPositionError(gated.solution.poses, truth), 0.3);
   // With only right closures nothing is rejected.
   std::vector<PoseGraphEdge> right_only = edges;
   right_only.pop_back();

@@ -68,6 +68,15 @@ inline double CastRay(const std::vector<Segment>& world, const Eigen::Vector2d& 
   return best;
 }
 
+// The largest distance between corresponding positions of 'poses' and 'truth'.
+inline double MaxPositionError(const std::vector<Pose2>& poses, const std::vector<Pose2>& truth) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    worst = std::max(worst, (poses[i].translation() - truth[i].translation()).norm());
+  }
+  return worst;
+}
+
 // A 'beams'-beam scan over 'fov' centred ahead, taken by a laser at 'pose'.
 inline LaserScan SimulateScan(const std::vector<Segment>& world, const Pose2& pose, int beams = 361,
                               double fov = kPi, double max_range = 30.0) {

@@ -1,0 +1,211 @@
+#include "mapping/loop_closure.h"
+
+#include <chrono>
+#include <memory>
+
+#include "core/check.h"
+#include "mapping/map_io.h"
+#include "mapping/ray_casting.h"
+
+namespace semchain::mapping {
+
+bool LoopClosureOptions::Validate(std::string* error) const {
+  if (!(submap_travel_meters > 0.0)) {
+    *error = "submap_travel_meters must be positive";
+    return false;
+  }
+  if (!(min_loop_travel_meters > 0.0)) {
+    *error = "min_loop_travel_meters must be positive";
+    return false;
+  }
+  if (search_every_nodes < 1) {
+    *error = "search_every_nodes must be >= 1";
+    return false;
+  }
+  if (!(linear_window_meters > 0.0) || !(max_linear_window_meters >= linear_window_meters) ||
+      !(linear_window_per_meter >= 0.0)) {
+    *error = "linear windows must be positive, growing and max >= the start";
+    return false;
+  }
+  if (!(angular_window_radians > 0.0) || !(max_angular_window_radians >= angular_window_radians) ||
+      !(angular_window_per_meter >= 0.0)) {
+    *error = "angular windows must be positive, growing and max >= the start";
+    return false;
+  }
+  if (!(min_score > 0.0 && min_score <= 1.0)) {
+    *error = "min_score must be in (0, 1]";
+    return false;
+  }
+  if (!(odometry_sigma_meters > 0.0) || !(odometry_sigma_radians > 0.0) ||
+      !(loop_sigma_meters > 0.0) || !(loop_sigma_radians > 0.0) ||
+      !(odometry_sigma_per_meter >= 0.0) || !(odometry_sigma_radians_per_radian >= 0.0)) {
+    *error = "sigmas must be positive";
+    return false;
+  }
+  if (!(max_residual_sigmas > 0.0)) {
+    *error = "max_residual_sigmas must be positive";
+    return false;
+  }
+  if (!submap_grid.Validate(error) || !match_grid.Validate(error) || !matcher.Validate(error) ||
+      !refinement.Validate(error)) {
+    return false;
+  }
+  return optimizer.Validate(error);
+}
+
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A rigid local map in the frame of its first node.
+struct Submap {
+  int first = 0;
+  int last = 0;
+  OccupancyGrid grid;
+  // Once finished: the match grid and its matcher (which refers to the grid).
+  std::unique_ptr<MatchGrid> match_grid;
+  std::unique_ptr<BranchAndBoundMatcher> matcher;
+  double radius = 0.0;  // of the grid's extent around its centre, metres
+};
+
+void Finish(Submap* submap, const LoopClosureOptions& options) {
+  submap->match_grid =
+      std::make_unique<MatchGrid>(MakeMatchGrid(GridToMapImage(submap->grid), options.match_grid));
+  submap->matcher = std::make_unique<BranchAndBoundMatcher>(*submap->match_grid, options.matcher);
+  submap->radius = 0.5 * submap->match_grid->resolution *
+                   std::hypot(submap->match_grid->width, submap->match_grid->height);
+}
+
+PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
+                         const LoopClosureOptions& options) {
+  PoseGraphEdge edge;
+  edge.from = from;
+  edge.to = from + 1;
+  edge.relative = a.Between(b);
+  const double distance = edge.relative.translation().norm();
+  const double turn = std::abs(edge.relative.theta);
+  const double xy = options.odometry_sigma_meters + options.odometry_sigma_per_meter * distance;
+  const double theta =
+      options.odometry_sigma_radians + options.odometry_sigma_radians_per_radian * turn;
+  edge.sigmas = Eigen::Vector3d(xy, xy, theta);
+  return edge;
+}
+
+}  // namespace
+
+LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
+                             const std::vector<Pose2>& poses, const LoopClosureOptions& options,
+                             const std::function<void(std::size_t)>& progress) {
+  std::string error;
+  SEMCHAIN_CHECK(options.Validate(&error));
+  SEMCHAIN_CHECK(scans.size() == poses.size());
+  LoopClosureResult result;
+  LoopClosureStatistics& stats = result.statistics;
+  const std::size_t n = poses.size();
+  stats.nodes = static_cast<int>(n);
+  std::vector<Pose2>& estimate = result.poses;
+  std::vector<PoseGraphEdge> edges;
+  std::vector<double> travel(n, 0.0);
+  std::vector<Submap> submaps;
+  double travel_at_closure = 0.0;
+
+  for (std::size_t i = 0; i < n; ++i) {
+    if (progress && i > 0) progress(i);
+    const int node = static_cast<int>(i);
+    if (i == 0) {
+      estimate.push_back(poses[0]);
+    } else {
+      travel[i] = travel[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm();
+      edges.push_back(MotionEdge(node - 1, poses[i - 1], poses[i], options));
+      estimate.push_back(estimate[i - 1] * edges.back().relative);
+    }
+    // The submap this node's scan goes into.
+    if (submaps.empty() || travel[i] - travel[static_cast<std::size_t>(submaps.back().first)] >
+                               options.submap_travel_meters) {
+      if (!submaps.empty()) Finish(&submaps.back(), options);
+      submaps.push_back(Submap{node, node, OccupancyGrid(options.submap_grid), nullptr, nullptr});
+    }
+    Submap& open = submaps.back();
+    open.last = node;
+    InsertScan(*scans[i], poses[static_cast<std::size_t>(open.first)].Between(poses[i]),
+               &open.grid);
+
+    if (i % static_cast<std::size_t>(options.search_every_nodes) != 0) continue;
+    const auto search_start = std::chrono::steady_clock::now();
+    const MatchPoints points =
+        SelectMatchPoints(*scans[i], options.match_max_range_meters, options.match_beam_step);
+    if (static_cast<int>(points.size()) < options.min_points) continue;
+    const double since = travel[i] - travel_at_closure;
+    SearchWindow window;
+    window.linear_window_meters =
+        std::min(options.max_linear_window_meters,
+                 options.linear_window_meters + options.linear_window_per_meter * since);
+    window.angular_window_radians =
+        std::min(options.max_angular_window_radians,
+                 options.angular_window_radians + options.angular_window_per_meter * since);
+    bool searched = false;
+    const Submap* best_submap = nullptr;
+    BranchAndBoundResult best;
+    for (const Submap& submap : submaps) {
+      if (!submap.matcher || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
+                                 options.min_loop_travel_meters) {
+        continue;
+      }
+      window.center = estimate[static_cast<std::size_t>(submap.first)].Between(estimate[i]);
+      const double reach = window.linear_window_meters + submap.radius;
+      if ((window.center.translation() - submap.match_grid->Center()).norm() > reach) continue;
+      searched = true;
+      const BranchAndBoundResult match =
+          submap.matcher->Match(points.points, window, std::max(options.min_score, best.score));
+      if (match.found && match.score > best.score) {
+        best = match;
+        best_submap = &submap;
+      }
+    }
+    stats.search_seconds += SecondsSince(search_start);
+    if (searched) ++stats.searches;
+    if (best_submap == nullptr) continue;
+    ++stats.found;
+    PoseGraphEdge closure;
+    closure.from = best_submap->first;
+    closure.to = node;
+    closure.relative =
+        RefineWithCeres(*best_submap->match_grid, points.points, best.pose, options.refinement)
+            .pose;
+    closure.sigmas = Eigen::Vector3d(options.loop_sigma_meters, options.loop_sigma_meters,
+                                     options.loop_sigma_radians);
+    closure.loop_closure = true;
+    edges.push_back(closure);
+    const std::size_t closure_index = edges.size() - 1;
+    const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(
+        estimate, edges, options.max_residual_sigmas, options.optimizer);
+    ++stats.optimizations;
+    stats.optimizer_seconds += gated.solution.seconds;
+    bool kept_new = true;
+    std::vector<bool> drop(edges.size(), false);
+    for (const int rejected : gated.rejected) {
+      drop[static_cast<std::size_t>(rejected)] = true;
+      if (static_cast<std::size_t>(rejected) == closure_index) kept_new = false;
+    }
+    std::vector<PoseGraphEdge> kept;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      if (!drop[e]) kept.push_back(edges[e]);
+    }
+    edges = std::move(kept);
+    stats.rejected += static_cast<int>(gated.rejected.size());
+    if (kept_new) travel_at_closure = travel[i];
+    // The solution was found without the rejected edges (the last solve), so it stands.
+    estimate = gated.solution.poses;
+  }
+  stats.submaps = static_cast<int>(submaps.size());
+  if (progress) progress(n);
+  for (const PoseGraphEdge& edge : edges) {
+    if (edge.loop_closure) stats.residuals.push_back(WhitenedResidual(edge, estimate).norm());
+  }
+  stats.accepted = static_cast<int>(stats.residuals.size());
+  return result;
+}
+
+}  // namespace semchain::mapping

@@ -1,0 +1,92 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/pose2.h"
+#include "mapping/branch_and_bound_matcher.h"
+#include "mapping/ceres_scan_matcher.h"
+#include "mapping/match_grid.h"
+#include "mapping/occupancy_grid.h"
+#include "mapping/pose_graph.h"
+#include "mapping/prepared_scan.h"
+
+// The pose graph behind the particle filter (DESIGN.md §3.2): the best particle's trajectory
+// becomes graph nodes, consecutive nodes are tied by the motion the filter found, nodes are
+// grouped into submaps (rigid local maps, Cartographer's idea), and every few nodes the scan is
+// searched for in the older submaps with the branch-and-bound matcher, in a window that grows
+// with the distance travelled since the last closure (the drift it may have to absorb). A match
+// above the score becomes a loop-closure edge; sparse pose adjustment with a robust loss then
+// moves the nodes, and a closure the others contradict is dropped.
+namespace semchain::mapping {
+
+struct LoopClosureOptions {
+  // Nodes of this much travel form one submap.
+  double submap_travel_meters = 15.0;
+  OccupancyGridOptions submap_grid;
+  MatchGridOptions match_grid;
+  BranchAndBoundOptions matcher{6, 0.0};
+  // A submap is searched only from nodes at least this far along the path after its last
+  // node (nearer ones are the filter's own business).
+  double min_loop_travel_meters = 30.0;
+  // Searches run from every n-th node.
+  int search_every_nodes = 3;
+  // Search window: this much right after a closure, growing with the travel since.
+  double linear_window_meters = 1.0;
+  double linear_window_per_meter = 0.05;
+  double max_linear_window_meters = 10.0;
+  double angular_window_radians = 0.15;
+  double angular_window_per_meter = 0.004;
+  double max_angular_window_radians = 0.6;
+  // A match must score at least this (mean M of its points, 0..1) and have this many points.
+  double min_score = 0.65;
+  int min_points = 40;
+  double match_max_range_meters = 20.0;
+  int match_beam_step = 2;
+  // The branch-and-bound pose (on the cell and angle grid) refined on the submap, as
+  // Cartographer refines its loop closures.
+  CeresScanMatcherOptions refinement;
+  // Uncertainties of the edges: consecutive nodes (standard deviations growing with the motion)
+  // and loop closures.
+  double odometry_sigma_meters = 0.02;
+  double odometry_sigma_per_meter = 0.02;
+  double odometry_sigma_radians = 0.005;
+  double odometry_sigma_radians_per_radian = 0.02;
+  double loop_sigma_meters = 0.05;
+  double loop_sigma_radians = 0.01;
+  // A closure whose whitened residual after optimization exceeds this is contradicted by the
+  // others and dropped.
+  double max_residual_sigmas = 5.0;
+  PoseGraphOptions optimizer;
+
+  bool Validate(std::string* error) const;
+};
+
+struct LoopClosureStatistics {
+  int nodes = 0;
+  int submaps = 0;
+  int searches = 0;  // nodes searched from
+  int found = 0;     // matches above the score
+  int accepted = 0;  // closures kept
+  int rejected = 0;  // closures dropped as inconsistent
+  int optimizations = 0;
+  double search_seconds = 0.0;
+  double optimizer_seconds = 0.0;
+  // Whitened residual norm of each kept closure after the last optimization.
+  std::vector<double> residuals;
+};
+
+struct LoopClosureResult {
+  std::vector<Pose2> poses;  // one per node, optimized
+  LoopClosureStatistics statistics;
+};
+
+// Runs the pose graph over the nodes in order, as it would run while they arrive: 'scans' and
+// 'poses' (the filter's, one per node) of the same length. 'progress' (may be empty) is called
+// with the nodes done.
+LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
+                             const std::vector<Pose2>& poses, const LoopClosureOptions& options,
+                             const std::function<void(std::size_t)>& progress = {});
+
+}  // namespace semchain::mapping
