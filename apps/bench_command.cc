@@ -262,12 +262,14 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
   md << "\n## Every run\n\n";
   if (relations) {
     md << "| log | config | particles | variant | seed | trans (m) mean ± std | rot (deg) mean ± "
-          "std | wall (s) | peak RSS (MB) | resamplings / genetic |\n"
-          "|---|---|---|---|---|---|---|---|---|---|\n";
+          "std | wall (s) | peak RSS (MB) | resamplings / genetic | loop closures found / "
+          "accepted / rejected | optimizer (s) |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   } else {
     md << "| log | config | particles | variant | seed | ATE RMSE (m) | ATE RMSE aligned (m) | "
-          "ATE max (m) | rot RMSE (deg) | wall (s) | peak RSS (MB) |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "ATE max (m) | rot RMSE (deg) | wall (s) | peak RSS (MB) | loop closures found / "
+          "accepted / rejected | optimizer (s) |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   }
   for (const nlohmann::json& run : results["runs"]) {
     md << "| " << run["log"].get<std::string>() << " | " << run["config"].get<std::string>()
@@ -288,6 +290,14 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
     md << Fixed(run["wall_s"], 1) << " | " << Fixed(run["peak_rss_mb"], 0);
     if (relations) {
       md << " | " << run.value("resamplings", 0) << " / " << run.value("genetic_resamplings", 0);
+    }
+    md << " | ";
+    if (run.contains("pose_graph")) {
+      const nlohmann::json& g = run["pose_graph"];
+      md << g["closures_found"] << " / " << g["closures_accepted"] << " / "
+         << g["closures_rejected"] << " | " << Fixed(g["optimizer_seconds"], 2);
+    } else {
+      md << "– | –";
     }
     md << " |\n";
   }
@@ -330,6 +340,7 @@ nlohmann::json RunOne(const BenchSlamArgs& args, const Reference& reference, con
                                  "mutations", "mean_effective_sample_size", "mean_alpha"}) {
       if (s.is_object() && s.contains(key_name)) run[key_name] = s[key_name];
     }
+    if (s.is_object() && s.contains("pose_graph")) run["pose_graph"] = s["pose_graph"];
   }
   return run;
 }

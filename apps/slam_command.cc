@@ -44,6 +44,7 @@ struct SlamArgs {
   std::optional<int> threads;
   std::optional<int> max_scans;
   bool raw_odometry = false;
+  std::optional<bool> pose_graph;
   SlamSemanticArgs semantic;
 };
 
@@ -58,6 +59,7 @@ Result<mapping::SlamOptions> BuildOptions(const SlamArgs& args) {
   if (args.seed) options.rbpf.seed = static_cast<std::uint64_t>(*args.seed);
   if (args.threads) options.rbpf.threads = *args.threads;
   if (!args.every_scan.empty()) options.every_scan.method = args.every_scan;
+  if (args.pose_graph) options.pose_graph = *args.pose_graph;
   std::string error;
   if (!options.Validate(&error)) return Status::Error("invalid SLAM options: " + error);
   return options;
@@ -86,6 +88,19 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
                          {"filter_seconds", result.filter_seconds},
                          {"every_scan_seconds", result.every_scan_seconds},
                          {"slam_seconds", seconds}};
+  if (options.pose_graph) {
+    const mapping::LoopClosureStatistics& l = result.loop_closure;
+    json["pose_graph"] = {{"nodes", l.nodes},
+                          {"submaps", l.submaps},
+                          {"searches", l.searches},
+                          {"closures_found", l.found},
+                          {"closures_accepted", l.accepted},
+                          {"closures_rejected", l.rejected},
+                          {"optimizations", l.optimizations},
+                          {"search_seconds", l.search_seconds},
+                          {"optimizer_seconds", l.optimizer_seconds},
+                          {"residuals", l.residuals}};
+  }
   return json.dump(2) + "\n";
 }
 
@@ -194,6 +209,13 @@ int RunSlamCommand(const SlamArgs& args) {
   }
   spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",
                result.statistics.processed, result.localized, scans->size(), seconds);
+  if (options->pose_graph) {
+    const mapping::LoopClosureStatistics& l = result.loop_closure;
+    spdlog::info(
+        "slam: pose graph: {} nodes, {} submaps, loop closures {} found, {} accepted, {} "
+        "rejected; search {:.1f} s, optimizer {:.2f} s",
+        l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.search_seconds, l.optimizer_seconds);
+  }
   return 0;
 }
 
@@ -220,6 +242,9 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       ->add_option("--every-scan", args->every_scan,
                    "Poses of unprocessed scans: localize (in the final map) or interpolate")
       ->check(CLI::IsMember({"localize", "interpolate"}));
+  command->add_flag("--pose-graph,!--no-pose-graph", args->pose_graph,
+                    "Loop closures and sparse pose adjustment behind the filter (config "
+                    "pose_graph.enabled; off by default)");
   command->add_option("--depth", args->depth_run,
                       "Run folder whose depth frames are fused into the map (seed 004): "
                       "camera.yaml, detections.jsonl, frames/*_depth.png");

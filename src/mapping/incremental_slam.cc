@@ -13,22 +13,27 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The pose of each of the first 'count' scans from the best particle's trajectory
-// (interpolated odometry between its processed scans).
+// The pose of each of the first 'count' scans from the poses of the scans the filter
+// processed (interpolated odometry in between).
 std::vector<Pose2> InterpolatedPoses(const std::vector<StampedScan>& scans, std::size_t count,
-                                     const Particle& best, std::vector<int>* processed) {
+                                     const std::vector<std::pair<int, Pose2>>& corrected) {
   std::vector<Pose2> odometry;
   std::vector<double> timestamps;
   for (std::size_t i = 0; i < count; ++i) {
     odometry.push_back(scans[i].odometry);
     timestamps.push_back(scans[i].scan.timestamp);
   }
-  std::vector<std::pair<int, Pose2>> corrected;
+  return InterpolateTrajectory(odometry, timestamps, corrected);
+}
+
+// The best particle's poses at the scans it processed, and their indices.
+std::vector<std::pair<int, Pose2>> BestNodes(const Particle& best, std::vector<int>* processed) {
+  std::vector<std::pair<int, Pose2>> nodes;
   for (const TrajectoryNode* node : Unroll(best.trajectory)) {
-    corrected.emplace_back(node->scan_index, node->pose);
+    nodes.emplace_back(node->scan_index, node->pose);
     processed->push_back(node->scan_index);
   }
-  return InterpolateTrajectory(odometry, timestamps, corrected);
+  return nodes;
 }
 
 OccupancyGrid BuildMap(const std::vector<PreparedScan>& scans, const std::vector<Pose2>& poses,
@@ -62,7 +67,8 @@ std::vector<StampedPose> CurrentTrajectory(const std::vector<StampedScan>& scans
                                            const RbpfSlam& slam) {
   SEMCHAIN_CHECK(count >= 1 && count <= scans.size());
   std::vector<int> processed;
-  const std::vector<Pose2> poses = InterpolatedPoses(scans, count, slam.BestParticle(), &processed);
+  const std::vector<Pose2> poses =
+      InterpolatedPoses(scans, count, BestNodes(slam.BestParticle(), &processed));
   std::vector<StampedPose> trajectory;
   trajectory.reserve(count);
   for (std::size_t i = 0; i < count; ++i) trajectory.push_back({scans[i].scan.timestamp, poses[i]});
@@ -103,9 +109,23 @@ SlamResult IncrementalSlam::Finish(const std::function<void(std::size_t)>& progr
   result.laser_odometry_seconds = laser_odometry_seconds_;
   result.filter_seconds = filter_seconds_;
   result.statistics = slam_.statistics();
-  std::vector<Pose2> poses =
-      InterpolatedPoses(scans_, scans_.size(), slam_.BestParticle(), &result.processed);
-  result.map = *slam_.BestParticle().map;
+  std::vector<std::pair<int, Pose2>> nodes = BestNodes(slam_.BestParticle(), &result.processed);
+  if (options_.pose_graph) {
+    std::vector<const PreparedScan*> node_scans;
+    std::vector<Pose2> node_poses;
+    for (const auto& [index, pose] : nodes) {
+      node_scans.push_back(&prepared_[static_cast<std::size_t>(index)]);
+      node_poses.push_back(pose);
+    }
+    LoopClosureResult closed = CloseLoops(node_scans, node_poses, options_.loop_closure);
+    for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k].second = closed.poses[k];
+    result.loop_closure = std::move(closed.statistics);
+  }
+  std::vector<Pose2> poses = InterpolatedPoses(scans_, scans_.size(), nodes);
+  // The filter's map, unless the pose graph moved the nodes: then the map of the optimized
+  // trajectory.
+  result.map = options_.pose_graph ? BuildMap(prepared_, poses, options_.rbpf.grid)
+                                   : *slam_.BestParticle().map;
   if (options_.every_scan.method == "localize") {
     auto tick = [&](std::size_t) {
       if (progress) progress(scans_.size() + scans_.size());

@@ -32,6 +32,7 @@ struct SlamResult {
   int localized = 0;                    // scans refined by scan matching in the final map
   int laser_odometry_rejected = 0;      // scans that kept their wheel odometry increment
   RbpfStatistics statistics;
+  LoopClosureStatistics loop_closure;  // with SlamOptions::pose_graph
   // Wall time of each stage, seconds.
   double laser_odometry_seconds = 0.0;
   double filter_seconds = 0.0;

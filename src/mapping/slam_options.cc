@@ -8,6 +8,10 @@ bool SlamOptions::Validate(std::string* error) const {
     *error = "laser_odometry." + *error;
     return false;
   }
+  if (!loop_closure.Validate(error)) {
+    *error = "pose_graph." + *error;
+    return false;
+  }
   if (every_scan.Validate(error)) return true;
   *error = "every_scan." + *error;
   return false;

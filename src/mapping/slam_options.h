@@ -3,6 +3,7 @@
 #include <string>
 
 #include "mapping/laser_odometry.h"
+#include "mapping/loop_closure.h"
 #include "mapping/rbpf_slam.h"
 #include "mapping/scan_localizer.h"
 
@@ -13,6 +14,11 @@ struct SlamOptions {
   LaserOdometryOptions laser_odometry;
   RbpfOptions rbpf;
   EveryScanOptions every_scan;
+  // The pose graph behind the filter (loop_closure.h): the best particle's nodes optimized
+  // with the loop closures found among them before the final passes. Off by default until it
+  // is shown not to cost the building-sized logs anything (issue 27).
+  bool pose_graph = false;
+  LoopClosureOptions loop_closure;
 
   bool Validate(std::string* error) const;
 };

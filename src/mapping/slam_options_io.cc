@@ -156,6 +156,49 @@ Status ReadEveryScan(const yaml::Node& root, EveryScanOptions* e) {
   return ReadSection(*node, "matcher", MatcherFields(&e->matcher));
 }
 
+// pose_graph: {enabled, submap_travel_meters, ...}: the pose graph behind the filter.
+Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
+  if (!root.Has("pose_graph")) return Status::Ok();
+  const Result<yaml::Node> node = root.Get("pose_graph");
+  if (!node.ok()) return node.status();
+  if (node->IsNull()) return Status::Ok();
+  if (!node->IsMap()) return node->Error("expected a map");
+  LoopClosureOptions& l = options->loop_closure;
+  SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys(
+      {"enabled", "submap_travel_meters", "min_loop_travel_meters", "search_every_nodes",
+       "linear_window_meters", "linear_window_per_meter", "max_linear_window_meters",
+       "angular_window_radians", "angular_window_per_meter", "max_angular_window_radians",
+       "min_score", "min_points", "match_max_range_meters", "match_beam_step",
+       "max_residual_sigmas", "loop_sigma_meters", "loop_sigma_radians"}));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "enabled", &options->pose_graph));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "submap_travel_meters", &l.submap_travel_meters));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "min_loop_travel_meters", &l.min_loop_travel_meters));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "search_every_nodes", &l.search_every_nodes));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "linear_window_meters", &l.linear_window_meters));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "linear_window_per_meter", &l.linear_window_per_meter));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "max_linear_window_meters", &l.max_linear_window_meters));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "angular_window_radians", &l.angular_window_radians));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "angular_window_per_meter", &l.angular_window_per_meter));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "max_angular_window_radians", &l.max_angular_window_radians));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_score", &l.min_score));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_points", &l.min_points));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "match_max_range_meters", &l.match_max_range_meters));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &l.match_beam_step));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "max_residual_sigmas", &l.max_residual_sigmas));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "loop_sigma_meters", &l.loop_sigma_meters));
+  return yaml::ReadOptional(*node, "loop_sigma_radians", &l.loop_sigma_radians);
+}
+
 Status ReadLaserOdometry(const yaml::Node& root, LaserOdometryOptions* l) {
   if (!root.Has("laser_odometry")) return Status::Ok();
   const Result<yaml::Node> node = root.Get("laser_odometry");
@@ -182,11 +225,26 @@ Status ReadSlamOptions(const yaml::Node& root, SlamOptions* options) {
   if (root.IsNull()) return Status::Ok();
   if (!root.IsMap()) return root.Error("expected a map of SLAM options");
   RbpfOptions& o = options->rbpf;
-  SEMCHAIN_RETURN_IF_ERROR(root.CheckKeys(
-      {"particles", "seed", "threads", "linear_update_meters", "angular_update_radians",
-       "resample_threshold", "weight_gain", "match_max_range_meters", "match_beam_step", "grid",
-       "scan", "likelihood_field", "matcher", "motion", "proposal", "annealing", "genetic",
-       "every_scan", "laser_odometry"}));
+  SEMCHAIN_RETURN_IF_ERROR(root.CheckKeys({"particles",
+                                           "seed",
+                                           "threads",
+                                           "linear_update_meters",
+                                           "angular_update_radians",
+                                           "resample_threshold",
+                                           "weight_gain",
+                                           "match_max_range_meters",
+                                           "match_beam_step",
+                                           "grid",
+                                           "scan",
+                                           "likelihood_field",
+                                           "matcher",
+                                           "motion",
+                                           "proposal",
+                                           "annealing",
+                                           "genetic",
+                                           "every_scan",
+                                           "laser_odometry",
+                                           "pose_graph"}));
   int seed = static_cast<int>(o.seed);
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "particles", &o.particles));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(root, "seed", &seed));
@@ -206,6 +264,7 @@ Status ReadSlamOptions(const yaml::Node& root, SlamOptions* options) {
   SEMCHAIN_RETURN_IF_ERROR(ReadFilterSections(root, &o));
   SEMCHAIN_RETURN_IF_ERROR(ReadEveryScan(root, &options->every_scan));
   SEMCHAIN_RETURN_IF_ERROR(ReadLaserOdometry(root, &options->laser_odometry));
+  SEMCHAIN_RETURN_IF_ERROR(ReadPoseGraph(root, options));
   std::string error;
   if (!options->Validate(&error)) return root.Error(error);
   return Status::Ok();

@@ -31,6 +31,25 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(loaded.laser_odometry.prior.min_rotation_sigma_radians,
                    defaults.laser_odometry.prior.min_rotation_sigma_radians);
   EXPECT_EQ(loaded.every_scan.refinement.lines_only, defaults.every_scan.refinement.lines_only);
+  EXPECT_EQ(loaded.pose_graph, defaults.pose_graph);
+  const LoopClosureOptions& l = loaded.loop_closure;
+  const LoopClosureOptions& d = defaults.loop_closure;
+  EXPECT_DOUBLE_EQ(l.submap_travel_meters, d.submap_travel_meters);
+  EXPECT_DOUBLE_EQ(l.min_loop_travel_meters, d.min_loop_travel_meters);
+  EXPECT_EQ(l.search_every_nodes, d.search_every_nodes);
+  EXPECT_DOUBLE_EQ(l.linear_window_meters, d.linear_window_meters);
+  EXPECT_DOUBLE_EQ(l.linear_window_per_meter, d.linear_window_per_meter);
+  EXPECT_DOUBLE_EQ(l.max_linear_window_meters, d.max_linear_window_meters);
+  EXPECT_DOUBLE_EQ(l.angular_window_radians, d.angular_window_radians);
+  EXPECT_DOUBLE_EQ(l.angular_window_per_meter, d.angular_window_per_meter);
+  EXPECT_DOUBLE_EQ(l.max_angular_window_radians, d.max_angular_window_radians);
+  EXPECT_DOUBLE_EQ(l.min_score, d.min_score);
+  EXPECT_EQ(l.min_points, d.min_points);
+  EXPECT_DOUBLE_EQ(l.match_max_range_meters, d.match_max_range_meters);
+  EXPECT_EQ(l.match_beam_step, d.match_beam_step);
+  EXPECT_DOUBLE_EQ(l.loop_sigma_meters, d.loop_sigma_meters);
+  EXPECT_DOUBLE_EQ(l.loop_sigma_radians, d.loop_sigma_radians);
+  EXPECT_DOUBLE_EQ(l.max_residual_sigmas, d.max_residual_sigmas);
 }
 
 TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
@@ -59,6 +78,16 @@ TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
   status = ReadSlamOptions(*root, &options);
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("rule"), std::string::npos) << status.message();
+  root = yaml::Node::LoadString("pose_graph:\n  enabled: true\n  min_score: 1.5\n", "e.yaml");
+  options = SlamOptions();
+  status = ReadSlamOptions(*root, &options);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("pose_graph.min_score"), std::string::npos) << status.message();
+  root = yaml::Node::LoadString("pose_graph: {enabled: true, windw: 3}\n", "f.yaml");
+  options = SlamOptions();
+  status = ReadSlamOptions(*root, &options);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("windw"), std::string::npos) << status.message();
 }
 
 TEST(SlamOptionsIoTest, VariantsSwitchTheImprovements) {
