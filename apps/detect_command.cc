@@ -36,7 +36,7 @@ struct DetectArgs {
   std::string images;
   std::string out;
   std::string classes;
-  std::string input = "640x640";
+  std::string input = "320x256";  // the data set's and models/detector.onnx's size
   double confidence = detection::YoloOptions().confidence_threshold;
   double nms = detection::YoloOptions().nms_iou_threshold;
 };
