@@ -120,6 +120,27 @@ TEST_F(MapIoTest, HeadersAskingForHugeImagesAreRefused) {
       << map.status().message();
 }
 
+// An image that is not a file (a device, a pipe, a folder) is refused instead of read forever;
+// an empty one is an error.
+TEST_F(MapIoTest, ImagesThatAreNoFilesAreRefused) {
+  const std::string yaml =
+      "resolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.2\n";
+  Write("zero.yaml", "image: /dev/zero\n" + yaml);
+  Result<MapImage> map = ReadMap(dir_ / "zero.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_EQ(map.status().message(), "/dev/zero: not a regular file");
+  Write("empty.pgm", "");
+  Write("empty.yaml", "image: empty.pgm\n" + yaml);
+  map = ReadMap(dir_ / "empty.yaml");
+  ASSERT_FALSE(map.ok());  // OpenCV threw on it (found by fuzz/map_yaml_fuzzer.cc)
+  EXPECT_EQ(map.status().message(), (dir_ / "empty.pgm").string() + ": empty image file");
+  std::filesystem::create_directories(dir_ / "folder.pgm");
+  Write("folder.yaml", "image: folder.pgm\n" + yaml);
+  map = ReadMap(dir_ / "folder.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_EQ(map.status().message(), (dir_ / "folder.pgm").string() + ": not a regular file");
+}
+
 TEST_F(MapIoTest, GridToMapAndBack) {
   OccupancyGrid grid({}, Eigen::Vector2d(0.0, 0.0));
   const Pose2 pose(0.0, 0.0, 0.0);
