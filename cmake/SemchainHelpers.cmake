@@ -42,7 +42,14 @@ function(semchain_add_test name)
     SEMCHAIN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SEMCHAIN_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data")
   semchain_set_warnings(${name})
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+  # Label "unit" for the tests beside the code in src/, "e2e" for tests/ (ctest -L / -LE).
+  string(FIND "${CMAKE_CURRENT_SOURCE_DIR}/" "${PROJECT_SOURCE_DIR}/src/" in_src)
+  if(in_src EQUAL 0)
+    set(label unit)
+  else()
+    set(label e2e)
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600 LABELS ${label})
 endfunction()
 
 # semchain_add_benchmark(NAME SOURCES ... DEPS ...): a Google Benchmark program under bench/.

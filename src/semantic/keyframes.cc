@@ -78,7 +78,7 @@ Result<KeyframeDatabase> ReadKeyframes(const std::filesystem::path& path) {
   json root;
   try {
     root = json::parse(*text);
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {  // parse_error, or out_of_range for a number like 1e999
     return Status::Error(source + ": not valid JSON");
   }
   int version = 0;

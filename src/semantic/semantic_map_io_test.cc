@@ -68,6 +68,9 @@ TEST(SemanticMapIoTest, BadFilesNameTheField) {
       ErrorOf("{\"version\": 1,\n \"classes\": [}").find("bad_semantic.json:2: not valid JSON"),
       std::string::npos);
   EXPECT_NE(ErrorOf("{\"version\": 2}").find("version: unsupported"), std::string::npos);
+  // nlohmann throws out_of_range, not parse_error, on this (found by fuzz/semantic_json_fuzzer.cc).
+  EXPECT_NE(ErrorOf("{\"version\": 1e999}").find("not valid JSON (a number out of range)"),
+            std::string::npos);
 }
 
 TEST(KeyframesTest, RoundTrip) {
@@ -118,6 +121,7 @@ TEST(KeyframesTest, WrongTypesAreErrors) {
                                          "must be integers");
   EXPECT_NE(error_of(with("4294967296")).find("must be integers"), std::string::npos);
   EXPECT_NE(error_of(R"({"version": "1"})").find("version: expected 1"), std::string::npos);
+  EXPECT_NE(error_of(R"({"version": 1e999})").find("not valid JSON"), std::string::npos);
 }
 
 }  // namespace
