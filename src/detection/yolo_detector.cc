@@ -4,8 +4,10 @@
 #include <regex>
 #include <system_error>
 
+#include "core/atomic_file.h"
 #include "detection/class_nms.h"
 #include "detection/letterbox.h"
+#include "detection/onnx_graph_check.h"
 #include "io/detections_io.h"
 
 namespace semchain::detection {
@@ -31,8 +33,11 @@ std::string OpenCvMessage(const cv::Exception& error) {
 
 Result<cv::dnn::Net> ReadNet(const fs::path& model_path) {
   SEMCHAIN_RETURN_IF_ERROR(CheckModelFile(model_path));
+  const Result<std::string> bytes = ReadFile(model_path);
+  if (!bytes.ok()) return bytes.status();
+  SEMCHAIN_RETURN_IF_ERROR(CheckOnnxGraph(*bytes, model_path.string()));
   try {
-    cv::dnn::Net net = cv::dnn::readNetFromONNX(model_path.string());
+    cv::dnn::Net net = cv::dnn::readNetFromONNX(bytes->data(), bytes->size());
     if (net.empty()) return Status::Error(model_path.string() + ": OpenCV read an empty network");
     net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
     net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);

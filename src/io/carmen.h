@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -104,6 +105,10 @@ Status ApplyParam(const Param& param, const std::string& where, ReadOptions* opt
 // naming the file and line number ("log.clf:12: FLASER: expected 361 ranges, got 200");
 // NaN or infinite values are errors.
 Result<Log> ReadLog(const std::filesystem::path& path, const ReadOptions& options = {});
+
+// ReadLog on the text of a log; 'source' names it in errors.
+Result<Log> ParseLog(std::string_view text, const std::string& source,
+                     const ReadOptions& options = {});
 
 // Parses one log line (without newline); 'where' prefixes errors ("file:line").
 Result<Record> ParseLine(const std::string& line, const std::string& where,

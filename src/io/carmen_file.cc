@@ -81,9 +81,12 @@ std::vector<const TruePose*> Log::TruePoses() const { return RecordsOf<TruePose>
 Result<Log> ReadLog(const std::filesystem::path& path, const ReadOptions& options) {
   Result<std::string> contents = ReadMaybeCompressed(path);
   if (!contents.ok()) return contents.status();
+  return ParseLog(*contents, path.string(), options);
+}
+
+Result<Log> ParseLog(std::string_view text, const std::string& source, const ReadOptions& options) {
   ReadOptions current = options;  // PARAM lines update it for the lines that follow
   Log log;
-  const std::string_view text = *contents;
   std::size_t line_number = 0;
   for (std::size_t begin = 0; begin < text.size();) {
     std::size_t end = text.find('\n', begin);
@@ -93,7 +96,7 @@ Result<Log> ReadLog(const std::filesystem::path& path, const ReadOptions& option
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    const std::string where = path.string() + ":" + std::to_string(line_number);
+    const std::string where = source + ":" + std::to_string(line_number);
     Result<Record> record = ParseLine(line, where, current);
     if (!record.ok()) return record.status();
     if (const Param* param = std::get_if<Param>(&*record)) {

@@ -108,7 +108,7 @@ class EndpointClasses {
  private:
   const QuantizedDistanceField& classes_;
   Pose2 laser_;
-  double c_, s_;
+  [[maybe_unused]] double c_, s_;  // read only without SSE2 (clang warns otherwise)
   Eigen::Vector2d origin_;
 #if defined(__SSE2__)
   __m128d cs_, minus_s_c_, laser_xy_, origin_xy_, inverse_;

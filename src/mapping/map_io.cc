@@ -85,7 +85,16 @@ Status ReadYamlFields(const yaml::Node& root, MapImage* map, std::string* image)
     negate = as_int.ok() ? *as_int : static_cast<int>(*as_bool);
   }
   map->negate = negate != 0;
-  if (!(map->resolution > 0.0)) return root.Error("resolution must be positive");
+  // The grids behind a map take (0, 10] m cells (OccupancyGridOptions); below 1 mm or beyond
+  // 1000 km from the origin, cell indices of points on the map would overflow an int.
+  if (!(map->resolution >= kMinMapResolution && map->resolution <= kMaxMapResolution)) {
+    return root.Error("resolution must be in [" + FormatNumber(kMinMapResolution) + ", " +
+                      FormatNumber(kMaxMapResolution) + "] m");
+  }
+  if (!(std::abs(map->origin.x()) <= kMaxMapOrigin && std::abs(map->origin.y()) <= kMaxMapOrigin)) {
+    return root.Error("origin: x and y must be within " + FormatNumber(kMaxMapOrigin / 1000) +
+                      " km");
+  }
   if (!(map->free_thresh >= 0.0 && map->free_thresh < map->occupied_thresh &&
         map->occupied_thresh <= 1.0)) {
     return root.Error("need 0 <= free_thresh < occupied_thresh <= 1");

@@ -32,6 +32,11 @@ struct MapImage {
   bool operator==(const MapImage& other) const = default;
 };
 
+// What a map.yaml may say: cells of 1 mm to 10 m, an origin within 1000 km.
+inline constexpr double kMinMapResolution = 0.001;
+inline constexpr double kMaxMapResolution = 10.0;
+inline constexpr double kMaxMapOrigin = 1e6;
+
 // Reads 'yaml_path' and the image it names (relative to the YAML's folder): binary or ASCII
 // PGM, or any format OpenCV reads (PNG…). Errors name the file and, for YAML, the line.
 Result<MapImage> ReadMap(const std::filesystem::path& yaml_path);

@@ -89,6 +89,24 @@ TEST_F(MapIoTest, ErrorsNameTheProblem) {
   map = ReadMap(dir_ / "b.yaml");
   ASSERT_FALSE(map.ok());
   EXPECT_NE(map.status().message().find("b.pgm"), std::string::npos);
+  // Cells the grids cannot take (found by fuzz/map_yaml_fuzzer.cc: 605 m aborted
+  // MapImageToGrid) and origins whose cell indices would overflow are errors.
+  Write("d.yaml",
+        "image: b.pgm\nresolution: 605\norigin: [0, 0, 0]\noccupied_thresh: 0.65\n"
+        "free_thresh: 0.2\n");
+  map = ReadMap(dir_ / "d.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_NE(map.status().message().find("d.yaml:1: resolution must be in [0.001, 10] m"),
+            std::string::npos)
+      << map.status().message();
+  Write("e.yaml",
+        "image: b.pgm\nresolution: 0.05\norigin: [0, -3e9, 0]\noccupied_thresh: 0.65\n"
+        "free_thresh: 0.2\n");
+  map = ReadMap(dir_ / "e.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_NE(map.status().message().find("e.yaml:1: origin: x and y must be within 1000 km"),
+            std::string::npos)
+      << map.status().message();
   Write("c.pgm", "P5\n4 4\n255\n\x01");
   Write("c.yaml",
         "image: c.pgm\nresolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\n"
@@ -118,6 +136,27 @@ TEST_F(MapIoTest, HeadersAskingForHugeImagesAreRefused) {
   EXPECT_NE(map.status().message().find("truncated (the header asks for 9000 x 9000 pixels)"),
             std::string::npos)
       << map.status().message();
+}
+
+// An image that is not a file (a device, a pipe, a folder) is refused instead of read forever;
+// an empty one is an error.
+TEST_F(MapIoTest, ImagesThatAreNoFilesAreRefused) {
+  const std::string yaml =
+      "resolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.2\n";
+  Write("zero.yaml", "image: /dev/zero\n" + yaml);
+  Result<MapImage> map = ReadMap(dir_ / "zero.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_EQ(map.status().message(), "/dev/zero: not a regular file");
+  Write("empty.pgm", "");
+  Write("empty.yaml", "image: empty.pgm\n" + yaml);
+  map = ReadMap(dir_ / "empty.yaml");
+  ASSERT_FALSE(map.ok());  // OpenCV threw on it (found by fuzz/map_yaml_fuzzer.cc)
+  EXPECT_EQ(map.status().message(), (dir_ / "empty.pgm").string() + ": empty image file");
+  std::filesystem::create_directories(dir_ / "folder.pgm");
+  Write("folder.yaml", "image: folder.pgm\n" + yaml);
+  map = ReadMap(dir_ / "folder.yaml");
+  ASSERT_FALSE(map.ok());
+  EXPECT_EQ(map.status().message(), (dir_ / "folder.pgm").string() + ": not a regular file");
 }
 
 TEST_F(MapIoTest, GridToMapAndBack) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
+#include <system_error>
 
 #include "core/atomic_file.h"
 
@@ -86,8 +87,14 @@ Result<GrayImage> ParsePgm(const std::string& data, const std::filesystem::path&
 }
 
 Result<GrayImage> DecodeWithOpenCv(const std::string& data, const std::filesystem::path& path) {
+  if (data.empty()) return Status::Error(path.string() + ": empty image file");
   const std::vector<std::uint8_t> bytes(data.begin(), data.end());
-  const cv::Mat decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  cv::Mat decoded;
+  try {
+    decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {  // OpenCV's decoders throw on some corrupt files
+    decoded = cv::Mat();
+  }
   if (decoded.empty() || decoded.depth() != CV_8U) {
     return Status::Error(path.string() + ": cannot decode image (need 8-bit PGM, PNG, ...)");
   }
@@ -112,6 +119,11 @@ Result<GrayImage> DecodeWithOpenCv(const std::string& data, const std::filesyste
 }  // namespace
 
 Result<GrayImage> ReadGrayImage(const std::filesystem::path& path) {
+  // A map.yaml names its image: one naming /dev/zero or a pipe would read forever.
+  std::error_code error;
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error)) {
+    return Status::Error(path.string() + ": not a regular file");
+  }
   const Result<std::string> data = ReadFile(path);
   if (!data.ok()) return data.status();
   if (data->size() >= 2 && (*data)[0] == 'P' && ((*data)[1] == '5' || (*data)[1] == '2')) {

@@ -22,9 +22,11 @@ Status ReadFields(const yaml::Node& node, const Fields& fields, const Sections& 
   for (const auto& [key, target] : fields) allowed.push_back(key);
   for (const auto& [key, section] : sections) allowed.push_back(key);
   SEMCHAIN_RETURN_IF_ERROR(node.CheckKeys(allowed));
-  for (const auto& [key, target] : fields) {
-    SEMCHAIN_RETURN_IF_ERROR(
-        std::visit([&](auto* value) { return yaml::ReadOptional(node, key, value); }, target));
+  for (const auto& field : fields) {
+    // field.first, not a structured binding: clang before 16 cannot capture those in a lambda.
+    const std::string& key = field.first;
+    SEMCHAIN_RETURN_IF_ERROR(std::visit(
+        [&](auto* value) { return yaml::ReadOptional(node, key, value); }, field.second));
   }
   for (const auto& [key, section] : sections) {
     if (!node.Has(key)) continue;

@@ -1,6 +1,8 @@
 #include "semantic/keyframes.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -16,6 +18,31 @@ bool FiniteNumbers(const json& node, std::size_t count) {
     if (!value.is_number() || !std::isfinite(value.get<double>())) return false;
   }
   return true;
+}
+
+// 'node' as an int; false when it is no integer or does not fit (get<int> would wrap it).
+bool ToInt(const json& node, int* value) {
+  if (node.is_number_unsigned()) {
+    if (node.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+      return false;
+    }
+  } else if (!node.is_number_integer() ||
+             node.get<std::int64_t>() < std::numeric_limits<int>::min() ||
+             node.get<std::int64_t>() > std::numeric_limits<int>::max()) {
+    return false;
+  }
+  *value = node.get<int>();
+  return true;
+}
+
+// The int at 'key' of 'object', 'fallback' when absent (json::value() would throw on a string).
+bool OptionalInt(const json& object, const char* key, int fallback, int* value) {
+  const auto it = object.find(key);
+  if (it == object.end()) {
+    *value = fallback;
+    return true;
+  }
+  return ToInt(*it, value);
 }
 
 }  // namespace
@@ -51,10 +78,13 @@ Result<KeyframeDatabase> ReadKeyframes(const std::filesystem::path& path) {
   json root;
   try {
     root = json::parse(*text);
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {  // parse_error, or out_of_range for a number like 1e999
     return Status::Error(source + ": not valid JSON");
   }
-  if (!root.is_object() || root.value("version", 0) != 1) return error("version", "expected 1");
+  int version = 0;
+  if (!root.is_object() || !OptionalInt(root, "version", 0, &version) || version != 1) {
+    return error("version", "expected 1");
+  }
   if (!root.contains("run") || !root["run"].is_string()) return error("run", "expected a path");
   if (!root.contains("keyframes") || !root["keyframes"].is_array()) {
     return error("keyframes", "expected a list");
@@ -84,18 +114,19 @@ Result<KeyframeDatabase> ReadKeyframes(const std::filesystem::path& path) {
     for (std::size_t j = 0; j < node["objects"].size(); ++j) {
       const std::string object_where = where + ".objects[" + std::to_string(j) + "]";
       const json& o = node["objects"][j];
-      if (!o.is_object() || !o.contains("id") || !o["id"].is_number_integer() ||
+      KeyframeObject object;
+      if (!o.is_object() || !o.contains("id") || !ToInt(o["id"], &object.id) ||
           !o.contains("class") || !o["class"].is_string() || !o.contains("box") ||
           !FiniteNumbers(o["box"], 4) || !o.contains("depth_m") || !o["depth_m"].is_number()) {
         return error(object_where, "expected id, class, box (4 numbers) and depth_m");
       }
-      KeyframeObject object;
-      object.id = o["id"].get<int>();
       object.class_name = o["class"].get<std::string>();
       for (int k = 0; k < 4; ++k) object.box[k] = o["box"][k].get<double>();
       object.depth_m = o["depth_m"].get<double>();
-      object.upstream = o.value("upstream", -1);
-      object.downstream = o.value("downstream", -1);
+      if (!OptionalInt(o, "upstream", -1, &object.upstream) ||
+          !OptionalInt(o, "downstream", -1, &object.downstream)) {
+        return error(object_where, "upstream and downstream must be integers");
+      }
       keyframe.objects.push_back(object);
     }
     database.keyframes.push_back(std::move(keyframe));

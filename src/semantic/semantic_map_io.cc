@@ -163,6 +163,8 @@ Result<SemanticMap> ReadSemanticJson(const std::filesystem::path& path) {
     const std::size_t byte = std::min<std::size_t>(error.byte, text->size());
     const long line = 1 + std::count(text->begin(), text->begin() + static_cast<long>(byte), '\n');
     return Status::Error(path.string() + ":" + std::to_string(line) + ": not valid JSON");
+  } catch (const json::exception&) {  // out_of_range: a number beyond a double's range
+    return Status::Error(path.string() + ": not valid JSON (a number out of range)");
   }
   SemanticMap map;
   Result<const json*> version = r.Member(root, "", "version");

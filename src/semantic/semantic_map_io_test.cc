@@ -68,6 +68,9 @@ TEST(SemanticMapIoTest, BadFilesNameTheField) {
       ErrorOf("{\"version\": 1,\n \"classes\": [}").find("bad_semantic.json:2: not valid JSON"),
       std::string::npos);
   EXPECT_NE(ErrorOf("{\"version\": 2}").find("version: unsupported"), std::string::npos);
+  // nlohmann throws out_of_range, not parse_error, on this (found by fuzz/semantic_json_fuzzer.cc).
+  EXPECT_NE(ErrorOf("{\"version\": 1e999}").find("not valid JSON (a number out of range)"),
+            std::string::npos);
 }
 
 TEST(KeyframesTest, RoundTrip) {
@@ -92,6 +95,33 @@ TEST(KeyframesTest, RoundTrip) {
   EXPECT_DOUBLE_EQ(read->keyframes[0].pose.theta, 0.5);
   EXPECT_EQ(read->keyframes[0].objects[0].upstream, 7);
   EXPECT_DOUBLE_EQ(read->keyframes[0].objects[0].box[2], 40.0);
+}
+
+// Wrong types are errors, not exceptions (json::value threw on them, found by fuzzing).
+TEST(KeyframesTest, WrongTypesAreErrors) {
+  const auto error_of = [](const std::string& text) {
+    const fs::path path = Temp("typed_keyframes.json");
+    std::ofstream(path) << text;
+    const Result<KeyframeDatabase> read = ReadKeyframes(path);
+    return read.ok() ? std::string() : read.status().message();
+  };
+  const std::string object =
+      R"({"id": 3, "class": "door", "box": [0, 0, 1, 1], "depth_m": 2, "upstream": UP})";
+  const std::string file = R"({"version": 1, "run": "r", "keyframes": [{"frame": "f", )"
+                           R"("stamp": 0, "pose": [0, 0, 0], "objects": [OBJECT]}]})";
+  const auto with = [&](const std::string& upstream) {
+    std::string text = file;
+    std::string o = object;
+    o.replace(o.find("UP"), 2, upstream);
+    return text.replace(text.find("OBJECT"), 6, o);
+  };
+  EXPECT_EQ(error_of(with("7")), "");
+  EXPECT_EQ(error_of(with("\"7\"")), Temp("typed_keyframes.json").string() +
+                                         ": keyframes[0].objects[0]: upstream and downstream "
+                                         "must be integers");
+  EXPECT_NE(error_of(with("4294967296")).find("must be integers"), std::string::npos);
+  EXPECT_NE(error_of(R"({"version": "1"})").find("version: expected 1"), std::string::npos);
+  EXPECT_NE(error_of(R"({"version": 1e999})").find("not valid JSON"), std::string::npos);
 }
 
 }  // namespace

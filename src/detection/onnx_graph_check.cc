@@ -1,0 +1,167 @@
+#include "detection/onnx_graph_check.h"
+
+#include <cstdint>
+#include <functional>
+#include <set>
+#include <vector>
+
+namespace semchain::detection {
+namespace {
+
+enum WireType : std::uint32_t { kVarint = 0, kFixed64 = 1, kLengthDelimited = 2, kFixed32 = 5 };
+
+// One field of a message: its number and, for length-delimited fields, the bytes it holds.
+struct Field {
+  std::uint32_t number = 0;
+  std::uint32_t wire_type = 0;
+  std::string_view bytes;
+};
+
+bool ReadVarint(std::string_view data, std::size_t* pos, std::uint64_t* value) {
+  *value = 0;
+  for (int shift = 0; shift < 64 && *pos < data.size(); shift += 7) {
+    const auto byte = static_cast<std::uint8_t>(data[(*pos)++]);
+    *value |= static_cast<std::uint64_t>(byte & 0x7f) << shift;
+    if ((byte & 0x80) == 0) return true;
+  }
+  return false;
+}
+
+// Calls 'visit' on each field of the message 'data'; false when the bytes are not protobuf.
+bool ForEachField(std::string_view data, const std::function<bool(const Field&)>& visit) {
+  std::size_t pos = 0;
+  while (pos < data.size()) {
+    std::uint64_t key = 0, value = 0;
+    if (!ReadVarint(data, &pos, &key) || (key >> 3) == 0 || (key >> 3) > 0x1fffffff) return false;
+    Field field{static_cast<std::uint32_t>(key >> 3), static_cast<std::uint32_t>(key & 7), {}};
+    switch (field.wire_type) {
+      case kVarint:
+        if (!ReadVarint(data, &pos, &value)) return false;
+        break;
+      case kFixed64:
+      case kFixed32: {
+        const std::size_t width = field.wire_type == kFixed64 ? 8 : 4;
+        if (data.size() - pos < width) return false;
+        pos += width;
+        break;
+      }
+      case kLengthDelimited:
+        if (!ReadVarint(data, &pos, &value) || value > data.size() - pos) return false;
+        field.bytes = data.substr(pos, static_cast<std::size_t>(value));
+        pos += static_cast<std::size_t>(value);
+        break;
+      default:  // groups (3, 4) are not used by onnx.proto, 6 and 7 do not exist
+        return false;
+    }
+    if (!visit(field)) return false;
+  }
+  return true;
+}
+
+// The string field 'number' of the message 'data' (its last occurrence, as protobuf merges).
+bool StringField(std::string_view data, std::uint32_t number, std::string* value) {
+  return ForEachField(data, [&](const Field& field) {
+    if (field.number == number && field.wire_type == kLengthDelimited) value->assign(field.bytes);
+    return true;
+  });
+}
+
+struct GraphNames {
+  std::set<std::string> defined;  // graph inputs and initializers
+  std::vector<std::string> outputs;
+  std::vector<std::string_view> nodes;
+};
+
+bool CollectGraph(std::string_view graph, GraphNames* names) {
+  return ForEachField(graph, [&](const Field& field) {
+    if (field.wire_type != kLengthDelimited) return true;
+    std::string name;
+    switch (field.number) {
+      case 1:
+        names->nodes.push_back(field.bytes);
+        return true;
+      case 5:  // TensorProto.name
+        if (!StringField(field.bytes, 8, &name)) return false;
+        names->defined.insert(name);
+        return true;
+      case 11:  // ValueInfoProto.name
+      case 12:
+        if (!StringField(field.bytes, 1, &name)) return false;
+        if (field.number == 11) {
+          names->defined.insert(name);
+        } else {
+          names->outputs.push_back(name);
+        }
+        return true;
+      case 15:  // SparseTensorProto.values (a TensorProto) holds the name
+        return ForEachField(field.bytes, [&](const Field& values) {
+          if (values.number != 1 || values.wire_type != kLengthDelimited) return true;
+          if (!StringField(values.bytes, 8, &name)) return false;
+          names->defined.insert(name);
+          return true;
+        });
+      default:
+        return true;
+    }
+  });
+}
+
+// A name from the file for an error message: at most 64 characters, control bytes as '?', so
+// that the message stays one readable line.
+std::string Printable(std::string_view name) {
+  std::string text(name.substr(0, 64));
+  for (char& c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return name.size() > 64 ? text + "..." : text;
+}
+
+}  // namespace
+
+Status CheckOnnxGraph(std::string_view bytes, const std::string& source) {
+  const Status malformed = Status::Error(source + ": not an ONNX model (malformed protobuf)");
+  std::string_view graph;
+  bool has_graph = false;
+  if (!ForEachField(bytes, [&](const Field& field) {
+        if (field.number == 7 && field.wire_type == kLengthDelimited) {
+          graph = field.bytes;
+          has_graph = true;
+        }
+        return true;
+      })) {
+    return malformed;
+  }
+  if (!has_graph) return Status::Error(source + ": not an ONNX model (no graph)");
+  GraphNames names;
+  if (!CollectGraph(graph, &names)) return malformed;
+  for (std::size_t index = 0; index < names.nodes.size(); ++index) {
+    std::vector<std::string> inputs, outputs;
+    std::string op_type;
+    if (!ForEachField(names.nodes[index], [&](const Field& field) {
+          if (field.wire_type != kLengthDelimited) return true;
+          if (field.number == 1) inputs.emplace_back(field.bytes);
+          if (field.number == 2) outputs.emplace_back(field.bytes);
+          if (field.number == 4) op_type.assign(field.bytes);
+          return true;
+        })) {
+      return malformed;
+    }
+    for (const std::string& input : inputs) {
+      if (!input.empty() && names.defined.count(input) == 0) {
+        return Status::Error(source + ": ONNX node " + std::to_string(index) + " (" +
+                             Printable(op_type) + ") reads '" + Printable(input) +
+                             "', which no graph input, initializer or earlier node provides");
+      }
+    }
+    names.defined.insert(outputs.begin(), outputs.end());
+  }
+  for (const std::string& output : names.outputs) {
+    if (names.defined.count(output) == 0) {
+      return Status::Error(source + ": ONNX graph output '" + Printable(output) +
+                           "' is produced by no node");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace semchain::detection

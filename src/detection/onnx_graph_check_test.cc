@@ -1,0 +1,80 @@
+#include "detection/onnx_graph_check.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "detection/testing/square_scene.h"
+
+namespace semchain::detection {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Protobuf wire format by hand: a length-delimited field is the key (number << 3 | 2), the
+// length as a varint (all lengths here are below 128: one byte), then the bytes.
+std::string Field(int number, const std::string& bytes) {
+  return std::string(1, static_cast<char>(number << 3 | 2)) +
+         std::string(1, static_cast<char>(bytes.size())) + bytes;
+}
+
+std::string Node(const std::vector<std::string>& inputs, const std::string& output,
+                 const std::string& op_type) {
+  std::string node;
+  for (const std::string& input : inputs) node += Field(1, input);
+  return node + Field(2, output) + Field(4, op_type);
+}
+
+// ModelProto { graph { input x; initializer w; nodes; output y } }.
+std::string Model(const std::vector<std::string>& nodes, const std::string& output = "y") {
+  std::string graph = Field(11, Field(1, "x")) + Field(5, Field(8, "w"));
+  for (const std::string& node : nodes) graph += Field(1, node);
+  graph += Field(12, Field(1, output));
+  return std::string("\x08\x07", 2) + Field(7, graph);  // ir_version = 7, then the graph
+}
+
+TEST(OnnxGraphCheck, AcceptsASortedGraph) {
+  const std::string model =
+      Model({Node({"x", "w"}, "h", "Conv"), Node({"h", ""}, "y", "Relu")});  // "" = no input
+  EXPECT_TRUE(CheckOnnxGraph(model, "m.onnx").ok());
+}
+
+TEST(OnnxGraphCheck, RejectsAnInputNoEarlierNodeProduces) {
+  const Status status =
+      CheckOnnxGraph(Model({Node({"h"}, "y", "Relu"), Node({"x", "w"}, "h", "Conv")}), "m.onnx");
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message(),
+            "m.onnx: ONNX node 0 (Relu) reads 'h', which no graph input, initializer or earlier "
+            "node provides");
+}
+
+TEST(OnnxGraphCheck, RejectsAnOutputNoNodeProduces) {
+  const Status status = CheckOnnxGraph(Model({Node({"x"}, "h", "Relu")}, "z"), "m.onnx");
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("graph output 'z' is produced by no node"));
+}
+
+TEST(OnnxGraphCheck, RejectsTruncatedAndForeignBytes) {
+  const std::string model = Model({Node({"x", "w"}, "y", "Conv")});
+  for (std::size_t size = 1; size < model.size(); ++size) {
+    EXPECT_FALSE(CheckOnnxGraph(model.substr(0, size), "m.onnx").ok()) << size;
+  }
+  EXPECT_EQ(CheckOnnxGraph("", "m.onnx").message(), "m.onnx: not an ONNX model (no graph)");
+  EXPECT_EQ(CheckOnnxGraph("P5\n8 6\n255\n", "m.onnx").message(),
+            "m.onnx: not an ONNX model (malformed protobuf)");
+}
+
+TEST(OnnxGraphCheck, AcceptsTheTestModels) {
+  for (const char* name : {"tiny_squares_raw.onnx", "tiny_squares_decoded.onnx"}) {
+    const Result<std::string> bytes = ReadFile(testing::TestModel(name));
+    ASSERT_TRUE(bytes.ok()) << bytes.status().message();
+    const Status status = CheckOnnxGraph(*bytes, name);
+    EXPECT_TRUE(status.ok()) << status.message();
+  }
+}
+
+}  // namespace
+}  // namespace semchain::detection
