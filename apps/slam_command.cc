@@ -44,7 +44,9 @@ struct SlamArgs {
   std::optional<int> threads;
   std::optional<int> max_scans;
   bool raw_odometry = false;
-  std::optional<bool> pose_graph;
+  // --pose-graph / --no-pose-graph: override the config's pose_graph.enabled when given.
+  bool pose_graph_on = false;
+  bool pose_graph_off = false;
   SlamSemanticArgs semantic;
 };
 
@@ -59,7 +61,8 @@ Result<mapping::SlamOptions> BuildOptions(const SlamArgs& args) {
   if (args.seed) options.rbpf.seed = static_cast<std::uint64_t>(*args.seed);
   if (args.threads) options.rbpf.threads = *args.threads;
   if (!args.every_scan.empty()) options.every_scan.method = args.every_scan;
-  if (args.pose_graph) options.pose_graph = *args.pose_graph;
+  if (args.pose_graph_on) options.pose_graph = true;
+  if (args.pose_graph_off) options.pose_graph = false;
   std::string error;
   if (!options.Validate(&error)) return Status::Error("invalid SLAM options: " + error);
   return options;
@@ -242,9 +245,12 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       ->add_option("--every-scan", args->every_scan,
                    "Poses of unprocessed scans: localize (in the final map) or interpolate")
       ->check(CLI::IsMember({"localize", "interpolate"}));
-  command->add_flag("--pose-graph,!--no-pose-graph", args->pose_graph,
-                    "Loop closures and sparse pose adjustment behind the filter (config "
-                    "pose_graph.enabled; off by default)");
+  CLI::Option* pose_graph_on =
+      command->add_flag("--pose-graph", args->pose_graph_on,
+                        "Loop closures and sparse pose adjustment behind the filter (config "
+                        "pose_graph.enabled; off by default)");
+  command->add_flag("--no-pose-graph", args->pose_graph_off, "The plain filter (no pose graph)")
+      ->excludes(pose_graph_on);
   command->add_option("--depth", args->depth_run,
                       "Run folder whose depth frames are fused into the map (seed 004): "
                       "camera.yaml, detections.jsonl, frames/*_depth.png");
