@@ -3,6 +3,8 @@
 // scan keeps its own geometry through the scan matcher and the maps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/angles.h"
 #include "mapping/slam_pipeline.h"
 #include "mapping/testing/synthetic_world.h"
@@ -37,21 +39,43 @@ double MaxPositionError(const std::vector<StampedPose>& estimate, const std::vec
   return worst;
 }
 
+double DistanceToSegment(const Eigen::Vector2d& p, const testing::Segment& s) {
+  const Eigen::Vector2d d = s.b - s.a;
+  const double t = std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (s.a + t * d - p).norm();
+}
+
+// The largest distance from a return of 'scan', placed at 'pose' with the scan's own
+// geometry, to the nearest wall.
+double WorstReturnOffWall(const std::vector<testing::Segment>& world, const LaserScan& scan,
+                          const Pose2& pose) {
+  double worst = 0.0;
+  const PreparedScan prepared = PrepareScan(scan, Pose2(), {});
+  for (const PreparedBeam& beam : prepared.beams) {
+    if (!beam.hit) continue;
+    const Eigen::Vector2d p = pose * beam.endpoint;
+    double nearest = 1e9;
+    for (const testing::Segment& s : world) nearest = std::min(nearest, DistanceToSegment(p, s));
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
 // The room run with interlaced scans; 'geometry_of_first' gives every scan the first scan's
 // geometry instead (what a reader that ignored each scan's own start angle would do).
 testing::SimulatedRun InterlacedRoomRun(bool geometry_of_first) {
   testing::SimulatedRun run = testing::SimulateRoomRun(0.1, 0.0, 4);
   const std::vector<testing::Segment> world = testing::RoomWorld();
+  const LaserScan first = InterlacedScan(world, run.truth.front(), 0);
   for (std::size_t k = 0; k < run.scans.size(); ++k) {
     LaserScan scan = InterlacedScan(world, run.truth[k], static_cast<int>(k));
     scan.timestamp = run.scans[k].scan.timestamp;
     if (geometry_of_first) {
-      scan.angle_min = run.scans.front().scan.angle_min;
-      scan.angle_increment = run.scans.front().scan.angle_increment;
+      scan.angle_min = first.angle_min;
+      scan.angle_increment = first.angle_increment;
     }
     run.scans[k].scan = scan;
   }
-  if (geometry_of_first) run.scans.front().scan.angle_min = -0.5 * kPi;
   return run;
 }
 
@@ -69,11 +93,14 @@ TEST(InterlacedLaserTest, SlamKeepsEachScansGeometry) {
   // each cast at its own angles, pin the trajectory to the truth.
   EXPECT_LT(MaxPositionError(result.trajectory, run.truth), 0.05);
 
-  // The same scans read with the first scan's start angle and step for all: a quarter to three
-  // quarters of a degree wrong on three scans of four is enough to lose the trajectory.
+  // Every scan's returns, placed with its own geometry at the true pose, lie on the walls; read
+  // with the first scan's start angle (what a reader ignoring each scan's geometry would do),
+  // the three other phases put far returns centimetres off. (SLAM itself is barely hurt by that
+  // misreading in this 10 m room, 0.018 m against 0.013 m, so the check is made here.)
   const testing::SimulatedRun misread = InterlacedRoomRun(true);
-  const SlamResult lost = RunSlam(misread.scans, options);
-  EXPECT_GT(MaxPositionError(lost.trajectory, misread.truth), 0.1);
+  const std::vector<testing::Segment> world = testing::RoomWorld();
+  EXPECT_LT(WorstReturnOffWall(world, run.scans[2].scan, run.truth[2]), 1e-6);
+  EXPECT_GT(WorstReturnOffWall(world, misread.scans[2].scan, misread.truth[2]), 0.05);
 }
 
 TEST(InterlacedLaserTest, ScansFromLogAcceptsScansThatDifferOnlyInGeometry) {
