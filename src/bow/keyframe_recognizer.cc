@@ -28,6 +28,11 @@ Result<KeyframeRecognizer> KeyframeRecognizer::Build(
   if (!options.orb.Validate(&invalid)) return Status::Error("ORB options: " + invalid);
   if (vocabulary.empty()) return Status::Error("empty vocabulary");
   const fs::path run = run_dir.empty() ? fs::path(keyframes.run) : run_dir;
+  if (run.empty() && !keyframes.keyframes.empty()) {
+    return Status::Error(
+        "the keyframes name no folder of images (the map was made without camera images); "
+        "the bag-of-words stage needs the keyframes' colour images");
+  }
   std::vector<fs::path> images;
   for (const semantic::Keyframe& keyframe : keyframes.keyframes) {
     images.push_back(ColorImagePath(run, keyframe.frame));

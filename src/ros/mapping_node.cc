@@ -12,6 +12,7 @@
 #include "mapping/map_io.h"
 #include "ros/object_markers.h"
 #include "ros/ros_geometry.h"
+#include "ros/ros_image.h"
 #include "ros/ros_map.h"
 #include "semantic/box_depth.h"
 #include "semantic/map_folder_writer.h"
@@ -68,6 +69,10 @@ void MappingNode::Start() {
   } else {
     detections_subscriber_ =
         nh_.subscribe("semchain/detections", kFrameQueue, &MappingNode::OnDetections, this);
+    if (parameters_.keyframe_images) {
+      color_subscriber_ =
+          nh_.subscribe("camera/color/image_raw", kFrameQueue, &MappingNode::OnKeyframeImage, this);
+    }
   }
   save_service_ = nh_.advertiseService("semchain/save_map", &MappingNode::OnSaveMap, this);
   // An unwritable ~out is said now, not after an hour of mapping; the node maps anyway (the
@@ -192,7 +197,19 @@ void MappingNode::OnDetections(const std_msgs::StringConstPtr& message) {
     ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", frame.status().message().c_str());
     return;
   }
+  if (parameters_.keyframe_images && !frame->detections.empty()) {
+    keyframe_images_.AddFrame(frame->frame, frame->stamp);
+  }
   AddFrame(std::move(*frame), cv::Mat());
+}
+
+void MappingNode::OnKeyframeImage(const sensor_msgs::ImageConstPtr& message) {
+  Result<cv::Mat> rgb = ColorFromImageMsg(*message);
+  if (!rgb.ok()) {
+    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
+    return;
+  }
+  keyframe_images_.AddImage(message->header.stamp.toSec(), *rgb);
 }
 
 void MappingNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
@@ -210,6 +227,9 @@ void MappingNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
   frame.frame = "camera/" + std::to_string(message->header.seq);
   frame.stamp = detected->stamp;
   frame.detections = std::move(detected->detections);
+  if (parameters_.keyframe_images && !frame.detections.empty()) {
+    keyframe_images_.AddFrameImage(frame.frame, detected->color);
+  }
   AddFrame(std::move(frame), detected->depth_m);
 }
 
@@ -222,14 +242,26 @@ Status MappingNode::Save() {
   semantic::SemanticMappingResult mapped;
   mapped.map.classes = DefaultClassNames();
   if (semantic_) mapped = semantic_->Current(result.trajectory, contents.occupancy);
-  // No run folder holds the frames: the keyframes name none (semantic-amcl-bow needs images).
-  const semantic::KeyframeDatabase keyframes{"", mapped.keyframes};
+  // No run folder holds the frames: the keyframes' images are saved in the map folder itself
+  // ("run": "."), those of keyframes without an image left out; with no image at all the
+  // keyframes name no folder (semantic-amcl-bow then says it needs images).
+  semantic::KeyframeDatabase keyframes{"", mapped.keyframes};
+  const auto write_images = [&](const std::filesystem::path& staging) -> Status {
+    if (keyframe_images_.size() == 0) return Status::Ok();
+    Result<std::vector<semantic::Keyframe>> written =
+        keyframe_images_.Write(staging, mapped.keyframes);
+    if (!written.ok()) return written.status();
+    keyframes = {".", std::move(*written)};
+    return semantic::WriteKeyframes(staging / "keyframes.json", keyframes);
+  };
   contents.semantic = &mapped.map;
   contents.keyframes = &keyframes;
-  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteMapFolder(parameters_.out, contents));
+  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteMapFolder(parameters_.out, contents, write_images));
   saved_at_ = {slam_.size(), MappedFrames()};
-  ROS_INFO("semchain_ros: saved %s: %zu scans, %zu objects, %zu chains", parameters_.out.c_str(),
-           result.trajectory.size(), mapped.map.objects.size(), mapped.map.chains.size());
+  ROS_INFO("semchain_ros: saved %s: %zu scans, %zu objects, %zu chains, %zu keyframes (%s)",
+           parameters_.out.c_str(), result.trajectory.size(), mapped.map.objects.size(),
+           mapped.map.chains.size(), keyframes.keyframes.size(),
+           keyframes.run.empty() ? "no images" : "with images");
   return Status::Ok();
 }
 

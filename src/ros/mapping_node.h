@@ -20,6 +20,7 @@
 #include "mapping/incremental_slam.h"
 #include "ros/mapping_parameters.h"
 #include "ros/node_inputs.h"
+#include "semantic/keyframe_images.h"
 #include "semantic/live_semantic_run.h"
 
 // semchain_ros in mapping mode (~mode:=mapping): a drop-in for slam_gmapping that also maps
@@ -67,6 +68,8 @@ class MappingNode {
   void OnDetections(const std_msgs::StringConstPtr& message);
   void OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message);
   void OnColorImage(const sensor_msgs::ImageConstPtr& message);
+  // The colour image kept for the keyframes when /semchain/detections feeds the mapper.
+  void OnKeyframeImage(const sensor_msgs::ImageConstPtr& message);
   void OnDepthImage(const sensor_msgs::ImageConstPtr& message);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
 
@@ -91,11 +94,12 @@ class MappingNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   CameraTracker camera_;
   RgbdDetector rgbd_;
+  semantic::KeyframeImages keyframe_images_;
 
   ::ros::Subscriber scan_subscriber_;
   ::ros::Subscriber detections_subscriber_;
   ::ros::Subscriber camera_info_subscriber_;
-  ::ros::Subscriber color_subscriber_;
+  ::ros::Subscriber color_subscriber_;  // the detector's input, or the keyframes' images
   ::ros::Subscriber depth_subscriber_;
   ::ros::Publisher map_publisher_;
   ::ros::Publisher objects_publisher_;

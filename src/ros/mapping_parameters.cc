@@ -72,6 +72,7 @@ Result<MappingNodeParameters> ReadMappingNodeParameters(const ::ros::NodeHandle&
       ReadChecked(nh, "camera_max_range", &p.camera_max_range, Positive, "> 0 (metres)"));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "stats_file", &p.stats_file));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "save_on_shutdown", &p.save_on_shutdown));
+  SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "keyframe_images", &p.keyframe_images));
   // slam_gmapping's frame names.
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "base_frame", &p.frames.base_frame_id));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "odom_frame", &p.frames.odom_frame_id));

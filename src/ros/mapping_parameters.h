@@ -25,6 +25,10 @@ struct MappingNodeParameters {
   double map_update_interval = 5.0;  // s of scan time between two /map publications
   double transform_tolerance = 0.1;  // s: map → odom is future-dated by this much
   bool save_on_shutdown = true;      // ~save_on_shutdown: write ~out when the node stops
+  // ~keyframe_images: keep the keyframes' colour images (PNG in memory, ~50 KB each) and save
+  // them in ~out, so that the saved map serves semantic-amcl-bow; with /semchain/detections the
+  // images come from /camera/color/image_raw when it is published.
+  bool keyframe_images = true;
   mapping::SlamOptions slam;
 };
 

@@ -91,6 +91,11 @@ Result<KeyframeDatabase> ReadKeyframes(const std::filesystem::path& path) {
   }
   KeyframeDatabase database;
   database.run = root["run"].get<std::string>();
+  // A relative run is the map folder's own (the ROS node stores the keyframes' images there), so
+  // the folder can be moved or copied to a robot as a whole.
+  if (!database.run.empty() && std::filesystem::path(database.run).is_relative()) {
+    database.run = (path.parent_path() / database.run).lexically_normal().string();
+  }
   const json& list = root["keyframes"];
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string where = "keyframes[" + std::to_string(i) + "]";

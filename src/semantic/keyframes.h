@@ -33,7 +33,9 @@ struct Keyframe {
 };
 
 struct KeyframeDatabase {
-  std::string run;  // the run directory the frames are in
+  // The folder the frames' images are in: absolute, or relative to the keyframes.json that
+  // names it (ReadKeyframes resolves it); empty when no images were kept.
+  std::string run;
   std::vector<Keyframe> keyframes;
 };
 

@@ -97,6 +97,25 @@ TEST(KeyframesTest, RoundTrip) {
   EXPECT_DOUBLE_EQ(read->keyframes[0].objects[0].box[2], 40.0);
 }
 
+// The ROS node keeps the keyframes' images in the map folder and names it "."; a reader in
+// another working directory must still find them, so a relative run is the file's folder's.
+TEST(KeyframesTest, ARelativeRunIsTheFilesOwnFolder) {
+  const fs::path folder = Temp("moved_map");
+  fs::create_directories(folder);
+  KeyframeDatabase database;
+  database.keyframes.push_back(Keyframe{"frames/000001", 1.0, Pose2(), {}});
+  for (const std::string run : {".", "images", "/abs/run", ""}) {
+    database.run = run;
+    ASSERT_TRUE(WriteKeyframes(folder / "keyframes.json", database).ok());
+    const Result<KeyframeDatabase> read = ReadKeyframes(folder / "keyframes.json");
+    ASSERT_TRUE(read.ok()) << read.status().message();
+    const std::string expected = run == "."        ? folder.lexically_normal().string() + "/"
+                                 : run == "images" ? (folder / "images").string()
+                                                   : run;
+    EXPECT_EQ(read->run, expected) << "run \"" << run << "\"";
+  }
+}
+
 // Wrong types are errors, not exceptions (json::value threw on them, found by fuzzing).
 TEST(KeyframesTest, WrongTypesAreErrors) {
   const auto error_of = [](const std::string& text) {

@@ -3,14 +3,18 @@
 # before the first scan, frames and scans out of time order, an unknown class; made by
 # tests/ros/bad_inputs.py from the fixture's mapping bag). The node must warn about each, keep
 # mapping, save on /semchain/save_map, and the saved map must still match the world (precision
-# and recall >= 0.97) with no object of the unknown class.
+# and recall >= 0.97) with no object of the unknown class. The bag also carries the colour images
+# of five frames (tests/ros/add_keyframe_images.py): the saved folder must hold them as its
+# keyframes' images ("run": "."), each the image of its own frame.
 set -euo pipefail
 node="$1"
 source_dir="$2"
 work="$3"
 name=bad_input
 out="$work/bad_input_map"
-/usr/bin/python3 "$source_dir/tests/ros/bad_inputs.py" "$work/mapping.bag" "$work/bad_input.bag"
+/usr/bin/python3 "$source_dir/tests/ros/bad_inputs.py" "$work/mapping.bag" "$work/bad_only.bag"
+/usr/bin/python3 "$source_dir/tests/ros/add_keyframe_images.py" --run "$work/mapping" \
+  --bag "$work/bad_only.bag" --out "$work/bad_input.bag"
 rm -rf "$out"
 (
   source "$source_dir/tests/ros/ros_env.sh"
@@ -36,3 +40,5 @@ if grep -q fridge "$out/semantic.json"; then
 fi
 /usr/bin/python3 "$source_dir/tests/ros/score_semantic.py" "$out/semantic.json" \
   "$source_dir/worlds/two_similar_rooms.yaml"
+/usr/bin/python3 "$source_dir/tests/ros/add_keyframe_images.py" --run "$work/mapping" \
+  --check "$out"
