@@ -116,7 +116,84 @@ std::string Printable(std::string_view name) {
   return name.size() > 64 ? text + "..." : text;
 }
 
+// The message field 'number' of 'data' (its last occurrence).
+std::optional<std::string_view> MessageField(std::string_view data, std::uint32_t number) {
+  std::optional<std::string_view> found;
+  if (!ForEachField(data, [&](const Field& field) {
+        if (field.number == number && field.wire_type == kLengthDelimited) found = field.bytes;
+        return true;
+      })) {
+    return std::nullopt;
+  }
+  return found;
+}
+
+// The dimensions of a ValueInfoProto's tensor shape; -1 for a symbolic or missing value.
+std::optional<std::vector<std::int64_t>> TensorDims(std::string_view value_info) {
+  const std::optional<std::string_view> type = MessageField(value_info, 2);
+  if (!type) return std::nullopt;
+  const std::optional<std::string_view> tensor = MessageField(*type, 1);
+  if (!tensor) return std::nullopt;
+  const std::optional<std::string_view> shape = MessageField(*tensor, 2);
+  if (!shape) return std::nullopt;
+  std::vector<std::int64_t> dims;
+  const bool ok = ForEachField(*shape, [&](const Field& dim) {
+    if (dim.number != 1 || dim.wire_type != kLengthDelimited) return true;
+    std::int64_t value = -1;  // dim_param (a symbolic size) or nothing: unknown
+    // ForEachField does not keep varint values: Dimension.dim_value (field 1) is read here.
+    std::size_t pos = 0;
+    while (pos < dim.bytes.size()) {
+      std::uint64_t key = 0, raw = 0;
+      if (!ReadVarint(dim.bytes, &pos, &key)) return false;
+      if ((key & 7) == kVarint) {
+        if (!ReadVarint(dim.bytes, &pos, &raw)) return false;
+        if ((key >> 3) == 1) value = static_cast<std::int64_t>(raw);
+      } else if ((key & 7) == kLengthDelimited) {
+        if (!ReadVarint(dim.bytes, &pos, &raw) || raw > dim.bytes.size() - pos) return false;
+        pos += static_cast<std::size_t>(raw);
+      } else {
+        return false;
+      }
+    }
+    dims.push_back(value);
+    return true;
+  });
+  if (!ok) return std::nullopt;
+  return dims;
+}
+
 }  // namespace
+
+std::optional<std::pair<int, int>> OnnxStaticInputSize(std::string_view bytes) {
+  const std::optional<std::string_view> graph = MessageField(bytes, 7);
+  if (!graph) return std::nullopt;
+  std::set<std::string> initializers;
+  std::vector<std::string_view> inputs;
+  if (!ForEachField(*graph, [&](const Field& field) {
+        if (field.wire_type != kLengthDelimited) return true;
+        std::string name;
+        if (field.number == 5) {
+          if (!StringField(field.bytes, 8, &name)) return false;
+          initializers.insert(name);
+        } else if (field.number == 11) {
+          inputs.push_back(field.bytes);
+        }
+        return true;
+      })) {
+    return std::nullopt;
+  }
+  for (std::string_view input : inputs) {
+    std::string name;
+    if (!StringField(input, 1, &name) || initializers.count(name) > 0) continue;
+    const std::optional<std::vector<std::int64_t>> dims = TensorDims(input);
+    if (!dims || dims->size() != 4) return std::nullopt;
+    const std::int64_t height = (*dims)[2], width = (*dims)[3];
+    constexpr std::int64_t kLargest = 1 << 14;
+    if (height <= 0 || width <= 0 || height > kLargest || width > kLargest) return std::nullopt;
+    return std::pair<int, int>(static_cast<int>(width), static_cast<int>(height));
+  }
+  return std::nullopt;
+}
 
 Status CheckOnnxGraph(std::string_view bytes, const std::string& source) {
   const Status malformed = Status::Error(source + ": not an ONNX model (malformed protobuf)");

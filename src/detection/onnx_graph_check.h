@@ -1,7 +1,9 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "core/status.h"
 
@@ -18,5 +20,11 @@ namespace semchain::detection {
 // checker: every node input is a graph input, an initializer or an output of an earlier node,
 // and every graph output is produced). Subgraphs of control-flow nodes are not descended into.
 Status CheckOnnxGraph(std::string_view bytes, const std::string& source);
+
+// The (width, height) of the model's image input when its shape is static: the first graph
+// input that is not an initializer, of rank 4 (NCHW) with fixed positive H and W
+// (ValueInfoProto.type = 2 → TypeProto.tensor_type = 1 → shape = 2 → dim = 1 → dim_value = 1).
+// nullopt for a dynamic or unreadable shape.
+std::optional<std::pair<int, int>> OnnxStaticInputSize(std::string_view bytes);
 
 }  // namespace semchain::detection

@@ -76,5 +76,42 @@ TEST(OnnxGraphCheck, AcceptsTheTestModels) {
   }
 }
 
+// TensorShapeProto.Dimension: dim_value = 1 (varint, values below 128 here) or dim_param = 2.
+std::string Dim(int value) { return std::string(1, '\x08') + static_cast<char>(value); }
+std::string SymbolicDim(const std::string& name) { return Field(2, name); }
+
+// A model whose graph input 'name' has the shape 'dims' (ValueInfoProto.type.tensor_type.shape),
+// listed after an initializer that is also a graph input (older exporters list weights so).
+std::string ModelWithInput(const std::string& name, const std::vector<std::string>& dims) {
+  std::string shape;
+  for (const std::string& dim : dims) shape += Field(1, dim);
+  const std::string input = Field(1, name) + Field(2, Field(1, Field(2, shape)));
+  const std::string weight_input = Field(1, "w") + Field(2, Field(1, Field(2, Field(1, Dim(3)))));
+  const std::string graph = Field(5, Field(8, "w")) + Field(11, weight_input) + Field(11, input) +
+                            Field(12, Field(1, "y"));
+  return Field(7, graph);
+}
+
+TEST(OnnxStaticInputSize, ReadsHeightAndWidthOfTheImageInput) {
+  EXPECT_EQ(OnnxStaticInputSize(ModelWithInput("images", {Dim(1), Dim(3), Dim(96), Dim(64)})),
+            std::make_optional(std::pair(64, 96)));
+  // Dynamic (symbolic) sizes, another rank, no graph: nothing to read.
+  EXPECT_EQ(OnnxStaticInputSize(
+                ModelWithInput("images", {Dim(1), Dim(3), SymbolicDim("h"), SymbolicDim("w")})),
+            std::nullopt);
+  EXPECT_EQ(OnnxStaticInputSize(ModelWithInput("images", {Dim(1), Dim(96), Dim(64)})),
+            std::nullopt);
+  EXPECT_EQ(OnnxStaticInputSize(""), std::nullopt);
+  EXPECT_EQ(OnnxStaticInputSize(
+                ModelWithInput("images", {Dim(1), Dim(3), Dim(96), Dim(64)}).substr(0, 20)),
+            std::nullopt);
+}
+
+TEST(OnnxStaticInputSize, ReadsTheTestModelsExportSize) {
+  const Result<std::string> bytes = ReadFile(testing::TestModel("tiny_squares_raw.onnx"));
+  ASSERT_TRUE(bytes.ok()) << bytes.status().message();
+  EXPECT_EQ(OnnxStaticInputSize(*bytes), std::make_optional(std::pair(640, 640)));
+}
+
 }  // namespace
 }  // namespace semchain::detection

@@ -1,8 +1,10 @@
 #include "detection/yolo_detector.h"
 
 #include <algorithm>
+#include <optional>
 #include <regex>
 #include <system_error>
+#include <utility>
 
 #include "core/atomic_file.h"
 #include "detection/class_nms.h"
@@ -13,9 +15,13 @@
 namespace semchain::detection {
 
 Status ParseInputSize(const std::string& text, YoloOptions* options) {
+  if (text == "auto") {
+    options->input_width = options->input_height = 0;
+    return Status::Ok();
+  }
   std::smatch match;
   if (!std::regex_match(text, match, std::regex(R"((\d{1,5})x(\d{1,5}))"))) {
-    return Status::Error("--input " + text + ": expected WIDTHxHEIGHT, e.g. 640x640");
+    return Status::Error("--input " + text + ": expected WIDTHxHEIGHT, e.g. 640x640, or auto");
   }
   options->input_width = std::stoi(match[1]);
   options->input_height = std::stoi(match[2]);
@@ -31,11 +37,24 @@ std::string OpenCvMessage(const cv::Exception& error) {
   return message;
 }
 
-Result<cv::dnn::Net> ReadNet(const fs::path& model_path) {
+// The model's network and the input size to run it at: 'options''s, or the model's own for 0 × 0.
+// A static export asked for another size is tried at that size (a graph in which nothing depends
+// on the size runs at any); 'exported_size' gets the export's size for the error when it does not.
+Result<cv::dnn::Net> ReadNet(const fs::path& model_path, YoloOptions* options,
+                             std::optional<std::pair<int, int>>* exported_size) {
   SEMCHAIN_RETURN_IF_ERROR(CheckModelFile(model_path));
   const Result<std::string> bytes = ReadFile(model_path);
   if (!bytes.ok()) return bytes.status();
   SEMCHAIN_RETURN_IF_ERROR(CheckOnnxGraph(*bytes, model_path.string()));
+  const std::optional<std::pair<int, int>> exported = OnnxStaticInputSize(*bytes);
+  *exported_size = exported;
+  if (options->input_width == 0 && options->input_height == 0) {
+    constexpr int kDynamicDefault = 640;  // ultralytics' export and predict default
+    options->input_width = exported ? exported->first : kDynamicDefault;
+    options->input_height = exported ? exported->second : kDynamicDefault;
+    std::string invalid;
+    if (!options->Validate(&invalid)) return Status::Error(model_path.string() + ": " + invalid);
+  }
   try {
     cv::dnn::Net net = cv::dnn::readNetFromONNX(bytes->data(), bytes->size());
     if (net.empty()) return Status::Error(model_path.string() + ": OpenCV read an empty network");
@@ -56,9 +75,11 @@ Result<cv::dnn::Net> ReadNet(const fs::path& model_path) {
 }  // namespace
 
 bool YoloOptions::Validate(std::string* error) const {
-  if (input_width <= 0 || input_height <= 0 || input_width % 32 != 0 || input_height % 32 != 0) {
+  const bool from_model = input_width == 0 && input_height == 0;
+  if (!from_model &&
+      (input_width <= 0 || input_height <= 0 || input_width % 32 != 0 || input_height % 32 != 0)) {
     *error = "input size " + std::to_string(input_width) + "x" + std::to_string(input_height) +
-             ": width and height must be positive multiples of 32";
+             ": width and height must be positive multiples of 32 (or both 0: the model's own)";
     return false;
   }
   if (!(confidence_threshold > 0.0 && confidence_threshold <= 1.0)) {
@@ -82,18 +103,26 @@ Result<std::unique_ptr<YoloDetector>> YoloDetector::Load(const fs::path& model_p
   std::string error;
   if (!options.Validate(&error)) return Status::Error(error);
   if (class_names.empty()) return Status::Error(model_path.string() + ": no class names");
-  Result<cv::dnn::Net> net = ReadNet(model_path);
+  YoloOptions resolved = options;
+  std::optional<std::pair<int, int>> exported;
+  Result<cv::dnn::Net> net = ReadNet(model_path, &resolved, &exported);
   if (!net.ok()) return net.status();
   std::unique_ptr<YoloDetector> detector(
-      new YoloDetector(std::move(*net), std::move(class_names), options));
-  const cv::Mat grey(options.input_size(), CV_8UC3, cv::Scalar::all(kLetterboxGrey));
+      new YoloDetector(std::move(*net), std::move(class_names), resolved));
+  const cv::Mat grey(resolved.input_size(), CV_8UC3, cv::Scalar::all(kLetterboxGrey));
   Result<cv::Mat> output = detector->Forward(grey);
+  if (!output.ok() && exported &&
+      *exported != std::pair(resolved.input_width, resolved.input_height)) {
+    return Status::Error(model_path.string() + ": " + output.status().message() +
+                         " (the model was exported for a " + std::to_string(exported->first) + "x" +
+                         std::to_string(exported->second) + " input: give that size or auto)");
+  }
   if (!output.ok()) return output.status().WithContext(model_path.string());
   Result<HeadLayout> head =
-      IdentifyHead(*output, int(detector->class_names_.size()), options.input_size());
+      IdentifyHead(*output, int(detector->class_names_.size()), resolved.input_size());
   if (!head.ok()) return head.status().WithContext(model_path.string());
   detector->head_ = *head;
-  detector->anchors_ = MakeAnchors(options.input_size());
+  detector->anchors_ = MakeAnchors(resolved.input_size());
   return detector;
 }
 

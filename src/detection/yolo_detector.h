@@ -16,10 +16,11 @@
 namespace semchain::detection {
 
 struct YoloOptions {
-  // The network input in pixels, both multiples of 32 (the largest stride). A model exported
-  // with static shapes expects its export size; fully convolutional ones run at any size.
-  int input_width = 640;
-  int input_height = 640;
+  // The network input in pixels, both multiples of 32 (the largest stride), or both 0: the
+  // model's own, read from its ONNX graph when the export has a static shape (what OpenCV
+  // needs), else 640 × 640. A static model asked for another size is an error at Load.
+  int input_width = 0;
+  int input_height = 0;
   // Detections scoring below this are dropped (ultralytics' predict default).
   double confidence_threshold = 0.25;
   // Same-class boxes overlapping a better one by more than this IoU are dropped (OpenCV's and
@@ -32,7 +33,8 @@ struct YoloOptions {
   cv::Size input_size() const { return {input_width, input_height}; }
 };
 
-// Sets options->input_width and input_height from "WIDTHxHEIGHT" (the CLI's --input).
+// Sets options->input_width and input_height from "WIDTHxHEIGHT" or "auto" (0 × 0: the
+// model's own), the CLI's --input.
 Status ParseInputSize(const std::string& text, YoloOptions* options);
 
 class YoloDetector final : public Detector {
@@ -55,6 +57,7 @@ class YoloDetector final : public Detector {
   Cost ModelCost();
   const std::vector<std::string>& class_names() const override { return class_names_; }
   const HeadLayout& head() const { return head_; }
+  // With the input size resolved (never 0 × 0).
   const YoloOptions& options() const { return options_; }
 
  private:

@@ -165,11 +165,28 @@ TEST(YoloDetectorTest, AFileThatIsNoModelIsOneClearError) {
 TEST(YoloDetectorTest, ValidatesOptions) {
   YoloOptions options;
   options.input_width = 330;
+  options.input_height = 640;
   Result<std::unique_ptr<YoloDetector>> detector =
       YoloDetector::Load(TestModel("tiny_squares_raw.onnx"), SquareClasses(), options);
   ASSERT_FALSE(detector.ok());
   EXPECT_EQ(detector.status().message(),
-            "input size 330x640: width and height must be positive multiples of 32");
+            "input size 330x640: width and height must be positive multiples of 32 (or both 0: the "
+            "model's own)");
+}
+
+// 0 × 0 (the CLI's "auto") is the size the model was exported for, read from its graph.
+TEST(YoloDetectorTest, AutoInputIsTheExportSize) {
+  YoloOptions options;
+  ASSERT_TRUE(ParseInputSize("auto", &options).ok());
+  Result<std::unique_ptr<YoloDetector>> detector =
+      YoloDetector::Load(TestModel("tiny_squares_raw.onnx"), SquareClasses(), options);
+  ASSERT_TRUE(detector.ok()) << detector.status().message();
+  EXPECT_EQ((*detector)->options().input_size(), cv::Size(640, 640));
+  ASSERT_TRUE(ParseInputSize("320x256", &options).ok());
+  detector = YoloDetector::Load(TestModel("tiny_squares_raw.onnx"), SquareClasses(), options);
+  ASSERT_TRUE(detector.ok()) << detector.status().message();
+  EXPECT_EQ((*detector)->options().input_size(), cv::Size(320, 256));
+  EXPECT_NE(ParseInputSize("automatic", &options).message().find("or auto"), std::string::npos);
 }
 
 TEST(LoadYoloDetectorTest, ReadsTheNamesBesideTheModelAndReportsAMissingModelFirst) {

@@ -219,11 +219,12 @@ void LocalizationNode::OnDetections(const std_msgs::StringConstPtr& message) {
 }
 
 void LocalizationNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
-  rgbd_.OnDepthImage(message);
+  std::optional<RgbdDetections> frame = rgbd_.OnDepthImage(message);
+  if (frame) AddFrame(frame->stamp, std::move(frame->detections), frame->color);
 }
 
 void LocalizationNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
-  std::optional<RgbdDetections> frame = rgbd_.OnColorImage(*message);
+  std::optional<RgbdDetections> frame = rgbd_.OnColorImage(message);
   if (frame) AddFrame(frame->stamp, std::move(frame->detections), frame->color);
 }
 

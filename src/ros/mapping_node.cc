@@ -217,14 +217,18 @@ void MappingNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
 }
 
 void MappingNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
-  rgbd_.OnDepthImage(message);
+  AddDetectedFrame(rgbd_.OnDepthImage(message));
 }
 
 void MappingNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
-  std::optional<RgbdDetections> detected = rgbd_.OnColorImage(*message);
+  AddDetectedFrame(rgbd_.OnColorImage(message));
+}
+
+void MappingNode::AddDetectedFrame(std::optional<RgbdDetections> detected) {
   if (!detected) return;
+  timings_.detect_ms.push_back(detected->detect_ms);
   FrameDetections frame;
-  frame.frame = "camera/" + std::to_string(message->header.seq);
+  frame.frame = detected->frame;
   frame.stamp = detected->stamp;
   frame.detections = std::move(detected->detections);
   if (parameters_.keyframe_images && !frame.detections.empty()) {
@@ -301,6 +305,7 @@ Status MappingNode::WriteStats() const {
       {"frames_mapped", MappedFrames()},
       {"frames_skipped", semantic_ ? semantic_->skipped_frames() : 0},
       {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
+      {"detector_ms_per_frame", Spread(timings_.detect_ms)},
       {"scan_seconds", span},
       {"wall_seconds", timings_.wall_seconds},
       {"real_time_factor", timings_.wall_seconds > 0.0 ? span / timings_.wall_seconds : 0.0}};

@@ -36,10 +36,11 @@
 namespace semchain::ros1 {
 
 struct MappingTimings {
-  std::vector<double> cpu_ms;  // thread CPU per scan: SLAM and the semantic mapper
-  int dropped_scans = 0;       // no odometry (tf) for them in time
-  int rejected_scans = 0;      // out of time order
-  double first_stamp = -1.0;   // scan time span, for the real-time factor
+  std::vector<double> cpu_ms;     // thread CPU per scan: SLAM and the semantic mapper
+  std::vector<double> detect_ms;  // wall time of ~detector per camera frame
+  int dropped_scans = 0;          // no odometry (tf) for them in time
+  int rejected_scans = 0;         // out of time order
+  double first_stamp = -1.0;      // scan time span, for the real-time factor
   double last_stamp = -1.0;
   double wall_seconds = 0.0;  // wall time from the first scan to the last
 };
@@ -78,6 +79,7 @@ class MappingNode {
   bool Acceptable(const StampedScan& scan) const;
   void Feed(const StampedScan& scan);
   void AddFrame(FrameDetections frame, const cv::Mat& depth_m);
+  void AddDetectedFrame(std::optional<RgbdDetections> detected);
   void PublishTransform(const ::ros::Time& stamp, const Pose2& pose, const Pose2& odometry);
   void PublishMap(const ::ros::Time& stamp);
   int MappedFrames() const;

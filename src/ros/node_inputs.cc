@@ -3,6 +3,7 @@
 #include <ros/console.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "detection/run_detection.h"
@@ -90,20 +91,63 @@ std::optional<MountedCamera> CameraTracker::Camera(const tf2_ros::Buffer& buffer
   return camera_;
 }
 
-std::optional<RgbdDetections> RgbdDetector::OnColorImage(const sensor_msgs::Image& message) {
+namespace {
+
+// A depth image belongs to a colour image within half a frame of a 10 Hz camera.
+constexpr double kPairingGapSeconds = 0.05;
+// Images waiting for their partner: about a second of a 30 Hz camera.
+constexpr std::size_t kWaitingImages = 30;
+
+}  // namespace
+
+sensor_msgs::ImageConstPtr RgbdDetector::TakePartner(
+    std::deque<sensor_msgs::ImageConstPtr>* waiting, const ::ros::Time& stamp) {
+  for (auto it = waiting->begin(); it != waiting->end(); ++it) {
+    if (std::abs(((*it)->header.stamp - stamp).toSec()) > kPairingGapSeconds) continue;
+    sensor_msgs::ImageConstPtr partner = *it;
+    waiting->erase(waiting->begin(), std::next(it));  // older ones can no longer be paired
+    return partner;
+  }
+  return nullptr;
+}
+
+void RgbdDetector::Wait(std::deque<sensor_msgs::ImageConstPtr>* waiting,
+                        const sensor_msgs::ImageConstPtr& message, const char* what) {
+  waiting->push_back(message);
+  if (waiting->size() <= kWaitingImages) return;
+  waiting->pop_front();
+  ROS_WARN_THROTTLE(5.0, "semchain_ros: a %s image found no partner with its stamp; dropped", what);
+}
+
+std::optional<RgbdDetections> RgbdDetector::OnColorImage(
+    const sensor_msgs::ImageConstPtr& message) {
+  const sensor_msgs::ImageConstPtr depth = TakePartner(&depths_, message->header.stamp);
+  if (!depth) {
+    Wait(&colors_, message, "colour");
+    return std::nullopt;
+  }
+  return Detect(*message, *depth);
+}
+
+std::optional<RgbdDetections> RgbdDetector::OnDepthImage(
+    const sensor_msgs::ImageConstPtr& message) {
+  const sensor_msgs::ImageConstPtr color = TakePartner(&colors_, message->header.stamp);
+  if (!color) {
+    Wait(&depths_, message, "depth");
+    return std::nullopt;
+  }
+  return Detect(*color, *message);
+}
+
+std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& message,
+                                                   const sensor_msgs::Image& depth_message) {
   Result<cv::Mat> rgb = ColorFromImageMsg(message);
   if (!rgb.ok()) {
     ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
     return std::nullopt;
   }
-  // The aligned depth of the same moment: taken within half a frame of the colour image.
-  if (!latest_depth_ ||
-      std::abs((latest_depth_->header.stamp - message.header.stamp).toSec()) > 0.05) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: no depth image with the colour image's stamp");
-    return std::nullopt;
-  }
   constexpr double kMillimetre = 0.001;
-  Result<cv::Mat> depth = DepthFromImageMsg(*latest_depth_, kMillimetre);
+  Result<cv::Mat> depth = DepthFromImageMsg(depth_message, kMillimetre);
   if (!depth.ok() || depth->size() != rgb->size()) {
     ROS_WARN_THROTTLE(
         5.0, "semchain_ros: depth image unusable (%s)",
@@ -111,9 +155,13 @@ std::optional<RgbdDetections> RgbdDetector::OnColorImage(const sensor_msgs::Imag
     return std::nullopt;
   }
   RgbdDetections frame;
+  frame.frame = "camera/" + std::to_string(message.header.seq);
   frame.stamp = message.header.stamp.toSec();
   depth->convertTo(frame.depth_m, CV_32FC1, kMillimetre);
+  const auto start = std::chrono::steady_clock::now();
   Result<std::vector<Detection>> detections = detector_->Detect(*rgb);
+  frame.detect_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (!detections.ok()) {
     ROS_WARN_THROTTLE(5.0, "semchain_ros: detector: %s", detections.status().message().c_str());
     return std::nullopt;

@@ -7,6 +7,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_ros/buffer.h>
 
+#include <deque>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -62,23 +63,39 @@ class CameraTracker {
 
 // A colour image's detections by ~detector, with the aligned depth image of the same moment.
 struct RgbdDetections {
+  std::string frame;  // "camera/<colour image's header.seq>"
   double stamp = 0.0;
   std::vector<Detection> detections;
-  cv::Mat color;    // RGB
-  cv::Mat depth_m;  // CV_32FC1, metres (0: no reading)
+  cv::Mat color;           // RGB
+  cv::Mat depth_m;         // CV_32FC1, metres (0: no reading)
+  double detect_ms = 0.0;  // wall time of the detector on this frame (OpenCV runs it threaded)
 };
 
-// Pairs /camera/color/image_raw with /camera/depth/image_raw and runs the detector on it.
+// Pairs /camera/color/image_raw with /camera/depth/image_raw by stamp and runs the detector on
+// each pair. The two topics come on separate connections, so either image of a moment may
+// arrive first: each waits (a few at most) for its partner, and the call that completes a pair
+// returns its detections.
 class RgbdDetector {
  public:
   explicit RgbdDetector(detection::YoloDetector* detector) : detector_(detector) {}
-  void OnDepthImage(const sensor_msgs::ImageConstPtr& message) { latest_depth_ = message; }
-  // The frame's detections; nullopt with a throttled warning when it cannot be used.
-  std::optional<RgbdDetections> OnColorImage(const sensor_msgs::Image& message);
+  // The detections of the frame this image completes; nullopt while its partner has not come,
+  // or with a throttled warning when the pair cannot be used.
+  std::optional<RgbdDetections> OnColorImage(const sensor_msgs::ImageConstPtr& message);
+  std::optional<RgbdDetections> OnDepthImage(const sensor_msgs::ImageConstPtr& message);
 
  private:
+  std::optional<RgbdDetections> Detect(const sensor_msgs::Image& color,
+                                       const sensor_msgs::Image& depth);
+  // Takes the image of 'waiting' with 'stamp''s moment (and drops the older ones, which can no
+  // longer be paired); null when none.
+  static sensor_msgs::ImageConstPtr TakePartner(std::deque<sensor_msgs::ImageConstPtr>* waiting,
+                                                const ::ros::Time& stamp);
+  static void Wait(std::deque<sensor_msgs::ImageConstPtr>* waiting,
+                   const sensor_msgs::ImageConstPtr& message, const char* what);
+
   detection::YoloDetector* detector_;
-  sensor_msgs::ImageConstPtr latest_depth_;
+  std::deque<sensor_msgs::ImageConstPtr> colors_;  // waiting for their depth image
+  std::deque<sensor_msgs::ImageConstPtr> depths_;  // waiting for their colour image
 };
 
 // ~detector's model (no detector, null, when 'model' is empty); the error names the file.

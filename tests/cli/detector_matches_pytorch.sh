@@ -13,7 +13,7 @@ work="$3"
 rm -rf "$work"
 reference="$source_dir/tests/data/detector_reference"
 "$semchain" detect --model "$source_dir/models/detector.onnx" --images "$reference" \
-  --conf 0.02 --input 320x256 --out "$work" >/dev/null 2>&1
+  --conf 0.02 --out "$work" >/dev/null 2>&1
 /usr/bin/python3 - "$reference/boxes.json" "$work/detections.jsonl" <<'PY'
 import json, sys
 
