@@ -50,7 +50,24 @@ class Bottleneck(nn.Module):
         return x + y if self.add else y
 
 
-class C2f(nn.Module):
+class _InputCv1OutputCv2:
+    """Slots of a block that reads its input with cv1 and writes its output with cv2."""
+
+    cv1: Conv
+    cv2: Conv
+
+    def out_slots(self) -> list[OutSlot]:
+        return self.cv2.out_slots()
+
+    def in_slots(self) -> list[InSlot]:
+        return self.cv1.in_slots()
+
+    @property
+    def out_channels(self) -> int:
+        return conv_out(self.cv2)
+
+
+class C2f(_InputCv1OutputCv2, nn.Module):
     """YOLOv8's CSP block: cv1 splits into two parts; the second runs through n bottlenecks whose
     outputs are all concatenated with both parts into cv2.
 
@@ -77,16 +94,6 @@ class C2f(nn.Module):
             y.append(block(y[-1]))
         return self.cv2(torch.cat(y, 1))
 
-    def out_slots(self) -> list[OutSlot]:
-        return self.cv2.out_slots()
-
-    def in_slots(self) -> list[InSlot]:
-        return self.cv1.in_slots()
-
-    @property
-    def out_channels(self) -> int:
-        return conv_out(self.cv2)
-
     def groups(self, name: str) -> list[ChannelGroup]:
         first, second = self.split_sizes()
         groups = [link(f"{name}.part1", [OutSlot(self.cv1.conv, self.cv1.bn, 0)], first, [InSlot(self.cv2.conv, 0)])]
@@ -111,7 +118,7 @@ class C2f(nn.Module):
         return groups
 
 
-class SPPF(nn.Module):
+class SPPF(_InputCv1OutputCv2, nn.Module):
     """Spatial pyramid pooling (fast): three chained 5x5 max pools concatenated with their input."""
 
     def __init__(self, c_in: int, c_out: int, k: int = 5):
@@ -126,16 +133,6 @@ class SPPF(nn.Module):
         for _ in range(3):
             y.append(F.max_pool2d(y[-1], self.k, 1, self.k // 2))
         return self.cv2(torch.cat(y, 1))
-
-    def out_slots(self) -> list[OutSlot]:
-        return self.cv2.out_slots()
-
-    def in_slots(self) -> list[InSlot]:
-        return self.cv1.in_slots()
-
-    @property
-    def out_channels(self) -> int:
-        return conv_out(self.cv2)
 
     def groups(self, name: str) -> list[ChannelGroup]:
         hidden = conv_out(self.cv1)
