@@ -106,6 +106,138 @@ bool CollectGraph(std::string_view graph, GraphNames* names) {
   });
 }
 
+// Bytes per element of a TensorProto.DataType OpenCV can read raw; 0 for STRING and unknown.
+std::size_t ElementBytes(std::uint64_t data_type) {
+  switch (data_type) {
+    case 2:
+    case 3:
+    case 9:  // UINT8, INT8, BOOL
+      return 1;
+    case 4:
+    case 5:
+    case 10:
+    case 16:  // UINT16, INT16, FLOAT16, BFLOAT16
+      return 2;
+    case 1:
+    case 6:
+    case 12:  // FLOAT, INT32, UINT32
+      return 4;
+    case 7:
+    case 11:
+    case 13:
+    case 14:  // INT64, DOUBLE, UINT64, COMPLEX64
+      return 8;
+    case 15:  // COMPLEX128
+      return 16;
+    default:
+      return 0;
+  }
+}
+
+// Counts the values of a repeated numeric field seen as 'field': a packed run (its bytes /
+// 'fixed_width', or its varints when 'fixed_width' is 0) or one unpacked value.
+bool CountValues(const Field& field, std::size_t fixed_width, std::uint64_t* count,
+                 std::vector<std::uint64_t>* varints = nullptr) {
+  if (field.wire_type != kLengthDelimited) {
+    ++*count;
+    return true;
+  }
+  if (fixed_width > 0) {
+    if (field.bytes.size() % fixed_width != 0) return false;
+    *count += field.bytes.size() / fixed_width;
+    return true;
+  }
+  std::size_t pos = 0;
+  while (pos < field.bytes.size()) {
+    std::uint64_t value = 0;
+    if (!ReadVarint(field.bytes, &pos, &value)) return false;
+    if (varints != nullptr) varints->push_back(value);
+    ++*count;
+  }
+  return true;
+}
+
+// A TensorProto whose data does not hold as many values as its dims say: OpenCV 4.6 copies
+// dims' worth of bytes from whatever the file holds (a heap overflow, found by
+// fuzz/onnx_model_fuzzer.cc). Empty when the tensor is sound.
+std::string TensorProblem(std::string_view tensor) {
+  std::vector<std::uint64_t> dims;
+  std::uint64_t dim_count = 0, data_type = 0, raw_bytes = 0, floats = 0, int32s = 0, int64s = 0,
+                doubles = 0, uint64s = 0, strings = 0;
+  bool has_raw = false, external = false;  // external: data_location = EXTERNAL
+  const bool parsed = ForEachField(tensor, [&](const Field& field) {
+    switch (field.number) {
+      case 1:
+        if (field.wire_type == kVarint) return true;  // value skipped: counted below
+        return CountValues(field, 0, &dim_count, &dims);
+      case 2:
+        return true;
+      case 4:
+        return CountValues(field, 4, &floats);
+      case 5:
+        return CountValues(field, 0, &int32s);
+      case 6:
+        ++strings;
+        return true;
+      case 7:
+        return CountValues(field, 0, &int64s);
+      case 9:
+        has_raw = true;
+        raw_bytes = field.bytes.size();
+        return true;
+      case 10:
+        return CountValues(field, 8, &doubles);
+      case 11:
+        return CountValues(field, 0, &uint64s);
+      default:
+        return true;
+    }
+  });
+  if (!parsed) return "malformed";
+  // ForEachField does not keep varint values: data_type (2), unpacked dims (1) and
+  // data_location (14) are read here.
+  std::size_t pos = 0;
+  while (pos < tensor.size()) {
+    std::uint64_t key = 0, value = 0;
+    if (!ReadVarint(tensor, &pos, &key)) return "malformed";
+    const std::uint64_t wire = key & 7, number = key >> 3;
+    if (wire == kVarint) {
+      if (!ReadVarint(tensor, &pos, &value)) return "malformed";
+      if (number == 1) dims.push_back(value);
+      if (number == 2) data_type = value;
+      if (number == 14) external = value != 0;
+    } else if (wire == kLengthDelimited) {
+      if (!ReadVarint(tensor, &pos, &value) || value > tensor.size() - pos) return "malformed";
+      pos += static_cast<std::size_t>(value);
+    } else {
+      pos += wire == kFixed64 ? 8 : 4;
+    }
+  }
+  if (external) return "its data is in an external file (not supported)";
+  std::uint64_t elements = 1;
+  constexpr std::uint64_t kMaxElements = std::uint64_t{1} << 31;
+  for (const std::uint64_t dim : dims) {
+    if (static_cast<std::int64_t>(dim) < 0) return "a negative dimension";
+    if (dim != 0 && elements > kMaxElements / dim) return "more than 2^31 elements";
+    elements *= dim;
+  }
+  if (elements > kMaxElements) return "more than 2^31 elements";
+  const std::size_t width = ElementBytes(data_type);
+  if (has_raw) {
+    if (width == 0) return "raw data of an unsupported element type";
+    if (raw_bytes != elements * width) {
+      return std::to_string(raw_bytes) + " bytes of raw data for " + std::to_string(elements) +
+             " elements of " + std::to_string(width) + " bytes";
+    }
+    return {};
+  }
+  const std::uint64_t values = floats + int32s + int64s + doubles + uint64s + strings;
+  if (values != elements) {
+    return std::to_string(values) + " values for " + std::to_string(elements) + " elements";
+  }
+  return {};
+}
+
 // A name from the file for an error message: at most 64 characters, control bytes as '?', so
 // that the message stays one readable line.
 std::string Printable(std::string_view name) {
@@ -211,17 +343,44 @@ Status CheckOnnxGraph(std::string_view bytes, const std::string& source) {
   if (!has_graph) return Status::Error(source + ": not an ONNX model (no graph)");
   GraphNames names;
   if (!CollectGraph(graph, &names)) return malformed;
+  std::string tensor_error;
+  const auto check_tensor = [&](std::string_view tensor, const std::string& where) {
+    const std::string problem = TensorProblem(tensor);
+    if (problem.empty()) return true;
+    std::string name;
+    StringField(tensor, 8, &name);
+    tensor_error = source + ": ONNX " + where + " tensor '" + Printable(name) + "': " + problem;
+    return false;
+  };
+  if (!ForEachField(graph, [&](const Field& field) {
+        return field.number != 5 || field.wire_type != kLengthDelimited ||
+               check_tensor(field.bytes, "initializer");
+      })) {
+    return tensor_error.empty() ? malformed : Status::Error(tensor_error);
+  }
   for (std::size_t index = 0; index < names.nodes.size(); ++index) {
     std::vector<std::string> inputs, outputs;
     std::string op_type;
+    std::vector<std::string_view> attributes;
     if (!ForEachField(names.nodes[index], [&](const Field& field) {
           if (field.wire_type != kLengthDelimited) return true;
           if (field.number == 1) inputs.emplace_back(field.bytes);
           if (field.number == 2) outputs.emplace_back(field.bytes);
           if (field.number == 4) op_type.assign(field.bytes);
+          if (field.number == 5) attributes.push_back(field.bytes);
           return true;
         })) {
       return malformed;
+    }
+    // AttributeProto.t = 5 and .tensors = 11: a Constant's value, read like an initializer.
+    const std::string where = "node " + std::to_string(index) + " attribute";
+    for (std::string_view attribute : attributes) {
+      if (!ForEachField(attribute, [&](const Field& field) {
+            return (field.number != 5 && field.number != 11) ||
+                   field.wire_type != kLengthDelimited || check_tensor(field.bytes, where);
+          })) {
+        return tensor_error.empty() ? malformed : Status::Error(tensor_error);
+      }
     }
     for (const std::string& input : inputs) {
       if (!input.empty() && names.defined.count(input) == 0) {

@@ -28,9 +28,22 @@ std::string Node(const std::vector<std::string>& inputs, const std::string& outp
   return node + Field(2, output) + Field(4, op_type);
 }
 
+// TensorShapeProto.Dimension: dim_value = 1 (varint, values below 128 here) or dim_param = 2.
+std::string Dim(int value) { return std::string(1, '\x08') + static_cast<char>(value); }
+std::string SymbolicDim(const std::string& name) { return Field(2, name); }
+
+// TensorProto { dims: 'dims' (unpacked); data_type FLOAT; name; raw_data of 'raw_bytes' }.
+std::string FloatTensor(const std::string& name, const std::vector<int>& dims, int raw_bytes) {
+  std::string tensor;
+  for (const int dim : dims) tensor += Dim(dim);  // field 1, varint
+  tensor += std::string("\x10\x01", 2);           // data_type = 1 (FLOAT)
+  tensor += Field(8, name);
+  return tensor + Field(9, std::string(static_cast<std::size_t>(raw_bytes), '\0'));
+}
+
 // ModelProto { graph { input x; initializer w; nodes; output y } }.
 std::string Model(const std::vector<std::string>& nodes, const std::string& output = "y") {
-  std::string graph = Field(11, Field(1, "x")) + Field(5, Field(8, "w"));
+  std::string graph = Field(11, Field(1, "x")) + Field(5, FloatTensor("w", {1}, 4));
   for (const std::string& node : nodes) graph += Field(1, node);
   graph += Field(12, Field(1, output));
   return std::string("\x08\x07", 2) + Field(7, graph);  // ir_version = 7, then the graph
@@ -76,10 +89,6 @@ TEST(OnnxGraphCheck, AcceptsTheTestModels) {
   }
 }
 
-// TensorShapeProto.Dimension: dim_value = 1 (varint, values below 128 here) or dim_param = 2.
-std::string Dim(int value) { return std::string(1, '\x08') + static_cast<char>(value); }
-std::string SymbolicDim(const std::string& name) { return Field(2, name); }
-
 // A model whose graph input 'name' has the shape 'dims' (ValueInfoProto.type.tensor_type.shape),
 // listed after an initializer that is also a graph input (older exporters list weights so).
 std::string ModelWithInput(const std::string& name, const std::vector<std::string>& dims) {
@@ -111,6 +120,41 @@ TEST(OnnxStaticInputSize, ReadsTheTestModelsExportSize) {
   const Result<std::string> bytes = ReadFile(testing::TestModel("tiny_squares_raw.onnx"));
   ASSERT_TRUE(bytes.ok()) << bytes.status().message();
   EXPECT_EQ(OnnxStaticInputSize(*bytes), std::make_optional(std::pair(640, 640)));
+}
+
+std::string ModelWithInitializer(const std::string& tensor) {
+  const std::string graph = Field(11, Field(1, "x")) + Field(5, tensor) +
+                            Field(1, Node({"x", "w"}, "y", "Add")) + Field(12, Field(1, "y"));
+  return Field(7, graph);
+}
+
+// OpenCV 4.6 copies as many bytes as the dims say from whatever raw data the file holds: a
+// heap overflow on a short tensor (found by fuzz/onnx_model_fuzzer.cc,
+// fuzz/crashes/onnx_model/tensor_shorter_than_its_dims.bin).
+TEST(OnnxGraphCheck, RejectsATensorWhoseDataIsNotItsShapes) {
+  EXPECT_TRUE(CheckOnnxGraph(ModelWithInitializer(FloatTensor("w", {2, 3}, 24)), "m.onnx").ok());
+  EXPECT_EQ(CheckOnnxGraph(ModelWithInitializer(FloatTensor("w", {2, 3}, 20)), "m.onnx").message(),
+            "m.onnx: ONNX initializer tensor 'w': 20 bytes of raw data for 6 elements of 4 bytes");
+  EXPECT_THAT(
+      CheckOnnxGraph(ModelWithInitializer(FloatTensor("w", {100, 100, 100, 100}, 4)), "m.onnx")
+          .message(),
+      HasSubstr("bytes of raw data for 100000000 elements"));
+  // The same in a Constant node's value attribute (AttributeProto.t = 5).
+  const std::string constant = Field(2, "w") + Field(4, "Constant") +
+                               Field(5, Field(1, "value") + Field(5, FloatTensor("", {4}, 8)));
+  const std::string graph = Field(11, Field(1, "x")) + Field(1, constant) +
+                            Field(1, Node({"x", "w"}, "y", "Add")) + Field(12, Field(1, "y"));
+  EXPECT_THAT(CheckOnnxGraph(Field(7, graph), "m.onnx").message(),
+              HasSubstr("ONNX node 0 attribute tensor '': 8 bytes of raw data for 4 elements"));
+}
+
+TEST(OnnxGraphCheck, AcceptsTheDefaultDetector) {
+  const Result<std::string> bytes =
+      ReadFile(std::filesystem::path(SEMCHAIN_SOURCE_DIR) / "models/detector.onnx");
+  ASSERT_TRUE(bytes.ok()) << bytes.status().message();
+  const Status status = CheckOnnxGraph(*bytes, "detector.onnx");
+  EXPECT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(OnnxStaticInputSize(*bytes), std::make_optional(std::pair(320, 256)));
 }
 
 }  // namespace
