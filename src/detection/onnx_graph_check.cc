@@ -238,6 +238,50 @@ std::string TensorProblem(std::string_view tensor) {
   return {};
 }
 
+// The integers of an AttributeProto ('i' = 3 and 'ints' = 8, packed or not) when its name is
+// one of the sizes OpenCV divides by (group, strides, dilations, kernel_shape): each must be at
+// least 1 (a Conv with group 0 divided by zero inside OpenCV 4.6, found by
+// fuzz/onnx_model_fuzzer.cc). Empty when the attribute is sound or not one of them.
+std::string AttributeProblem(std::string_view attribute) {
+  std::string name;
+  if (!StringField(attribute, 1, &name)) return "malformed";
+  if (name != "group" && name != "strides" && name != "dilations" && name != "kernel_shape") {
+    return {};
+  }
+  std::vector<std::uint64_t> values;
+  std::size_t pos = 0;
+  while (pos < attribute.size()) {
+    std::uint64_t key = 0, value = 0;
+    if (!ReadVarint(attribute, &pos, &key)) return "malformed";
+    const std::uint64_t wire = key & 7, number = key >> 3;
+    if (wire == kVarint) {
+      if (!ReadVarint(attribute, &pos, &value)) return "malformed";
+      if (number == 3 || number == 8) values.push_back(value);
+    } else if (wire == kLengthDelimited) {
+      if (!ReadVarint(attribute, &pos, &value) || value > attribute.size() - pos) {
+        return "malformed";
+      }
+      if (number == 8) {  // packed ints
+        std::uint64_t count = 0;
+        if (!CountValues({8, kLengthDelimited, attribute.substr(pos, value)}, 0, &count, &values)) {
+          return "malformed";
+        }
+      }
+      pos += static_cast<std::size_t>(value);
+    } else {
+      pos += wire == kFixed64 ? 8 : 4;
+    }
+  }
+  for (const std::uint64_t value : values) {
+    const auto signed_value = static_cast<std::int64_t>(value);
+    if (signed_value < 1 || signed_value > (std::int64_t{1} << 20)) {
+      return "attribute '" + name + "' is " + std::to_string(signed_value) +
+             " (must be from 1 to 2^20)";
+    }
+  }
+  return {};
+}
+
 // A name from the file for an error message: at most 64 characters, control bytes as '?', so
 // that the message stays one readable line.
 std::string Printable(std::string_view name) {
@@ -375,6 +419,12 @@ Status CheckOnnxGraph(std::string_view bytes, const std::string& source) {
     // AttributeProto.t = 5 and .tensors = 11: a Constant's value, read like an initializer.
     const std::string where = "node " + std::to_string(index) + " attribute";
     for (std::string_view attribute : attributes) {
+      const std::string problem = AttributeProblem(attribute);
+      if (problem == "malformed") return malformed;
+      if (!problem.empty()) {
+        return Status::Error(source + ": ONNX node " + std::to_string(index) + " (" +
+                             Printable(op_type) + "): " + problem);
+      }
       if (!ForEachField(attribute, [&](const Field& field) {
             return (field.number != 5 && field.number != 11) ||
                    field.wire_type != kLengthDelimited || check_tensor(field.bytes, where);

@@ -148,6 +148,25 @@ TEST(OnnxGraphCheck, RejectsATensorWhoseDataIsNotItsShapes) {
               HasSubstr("ONNX node 0 attribute tensor '': 8 bytes of raw data for 4 elements"));
 }
 
+// A Conv with group 0 divided by zero inside OpenCV 4.6 (found by fuzz/onnx_model_fuzzer.cc,
+// fuzz/crashes/onnx_model/conv_group_zero.bin); a stride of 0 would too.
+TEST(OnnxGraphCheck, RejectsSizesOpenCvDividesBy) {
+  const auto conv = [](const std::string& attribute) {
+    const std::string node = Node({"x", "w"}, "y", "Conv") + Field(5, attribute);
+    return Model({node});
+  };
+  const std::string group_one = Field(1, "group") + std::string("\x18\x01", 2);  // i = 1
+  const std::string group_zero = Field(1, "group") + std::string("\x18\x00", 2);
+  const std::string packed_strides = Field(1, "strides") + Field(8, std::string("\x01\x00", 2));
+  const std::string other = Field(1, "pads") + Field(8, std::string("\x00\x00", 2));
+  EXPECT_TRUE(CheckOnnxGraph(conv(group_one), "m.onnx").ok());
+  EXPECT_TRUE(CheckOnnxGraph(conv(other), "m.onnx").ok());  // pads may be 0
+  EXPECT_EQ(CheckOnnxGraph(conv(group_zero), "m.onnx").message(),
+            "m.onnx: ONNX node 0 (Conv): attribute 'group' is 0 (must be from 1 to 2^20)");
+  EXPECT_THAT(CheckOnnxGraph(conv(packed_strides), "m.onnx").message(),
+              HasSubstr("attribute 'strides' is 0"));
+}
+
 TEST(OnnxGraphCheck, AcceptsTheDefaultDetector) {
   const Result<std::string> bytes =
       ReadFile(std::filesystem::path(SEMCHAIN_SOURCE_DIR) / "models/detector.onnx");
