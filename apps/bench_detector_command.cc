@@ -22,7 +22,7 @@ struct BenchDetectorArgs {
   std::string classes;
   std::string data;
   std::string split = "test";
-  std::string input = "320x256";
+  std::string input = "auto";  // the model's own (a static export's size), else 640x640
   int threads = 2;
   std::string out;
 };
@@ -84,7 +84,8 @@ Status RunBenchDetector(const BenchDetectorArgs& args) {
   json["model"] = args.model;
   json["data"] = args.data;
   json["split"] = args.split;
-  json["input"] = args.input;
+  json["input"] = std::to_string((*detector)->options().input_width) + "x" +
+                  std::to_string((*detector)->options().input_height);
   json["threads"] = args.threads;
   json["images"] = result->images;
   json["objects"] = result->truths;
@@ -128,7 +129,9 @@ void AddBenchDetector(CLI::App& bench, int& exit_code) {
                       "Class names, one per line (default: the .names file beside the model)");
   command->add_option("--data", args->data, "The data set's data.yaml")->required();
   command->add_option("--split", args->split, "train, val or test")->capture_default_str();
-  command->add_option("--input", args->input, "Network input WIDTHxHEIGHT (the export size)")
+  command
+      ->add_option("--input", args->input,
+                   "Network input WIDTHxHEIGHT, or auto: the model's export size")
       ->capture_default_str();
   command->add_option("--threads", args->threads, "OpenCV threads for inference")
       ->capture_default_str();

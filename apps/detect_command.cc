@@ -36,7 +36,7 @@ struct DetectArgs {
   std::string images;
   std::string out;
   std::string classes;
-  std::string input = "320x256";  // the data set's and models/detector.onnx's size
+  std::string input = "auto";  // the model's own (a static export's size), else 640x640
   double confidence = detection::YoloOptions().confidence_threshold;
   double nms = detection::YoloOptions().nms_iou_threshold;
 };
@@ -172,7 +172,9 @@ void AddDetectCommand(CLI::App& app, int& exit_code) {
                       "Class names, one per line (default: the model's .names file)");
   command->add_option("--conf", args->confidence, "Confidence threshold")->capture_default_str();
   command->add_option("--nms", args->nms, "NMS IoU threshold (per class)")->capture_default_str();
-  command->add_option("--input", args->input, "Network input WIDTHxHEIGHT (multiples of 32)")
+  command
+      ->add_option("--input", args->input,
+                   "Network input WIDTHxHEIGHT (multiples of 32), or auto: the model's export size")
       ->capture_default_str();
   command->callback([args, &exit_code] {
     // OpenCV logs its own diagnostics on stderr; the error line below says what went wrong.

@@ -56,8 +56,9 @@ void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string
                           " (class names from M.names beside it)");
   command->add_option("--classes", args->classes, "Class-names file of --detector");
   command
-      ->add_option("--detector-input", args->input,
-                   "Network input WIDTHxHEIGHT of --detector (multiples of 32)")
+      ->add_option(
+          "--detector-input", args->input,
+          "Network input WIDTHxHEIGHT of --detector (multiples of 32), or auto: its export size")
       ->capture_default_str();
 }
 

@@ -18,7 +18,7 @@ namespace semchain::app {
 struct DetectorArgs {
   std::string model;  // a YOLOv8-format ONNX model; empty: RUN/detections.jsonl
   std::string classes;
-  std::string input = "320x256";
+  std::string input = "auto";  // the model's own (a static export's size), else 640x640
 };
 
 // Adds --detector, --classes and --detector-input to 'command'; 'what' says what the model's

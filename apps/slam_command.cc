@@ -266,8 +266,9 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       ->needs(semantic);
   command->add_option("--classes", args->semantic.detector.classes,
                       "Class-names file of --detector");
-  command->add_option("--detector-input", args->semantic.detector.input,
-                      "Network input WIDTHxHEIGHT of --detector (multiples of 32)");
+  command->add_option(
+      "--detector-input", args->semantic.detector.input,
+      "Network input WIDTHxHEIGHT of --detector (multiples of 32), or auto: its export size");
   command->add_option("--scale", args->semantic.scale, "Pixels per metre of semantic.png")
       ->check(CLI::Range(1.0, 1000.0));
   command->add_option("--max-scans", args->max_scans, "Use only the first N scans of the log")
