@@ -10,11 +10,13 @@ namespace {
 
 enum WireType : std::uint32_t { kVarint = 0, kFixed64 = 1, kLengthDelimited = 2, kFixed32 = 5 };
 
-// One field of a message: its number and, for length-delimited fields, the bytes it holds.
+// One field of a message: its number and, for varint fields, the value, for length-delimited
+// fields, the bytes it holds.
 struct Field {
   std::uint32_t number = 0;
   std::uint32_t wire_type = 0;
   std::string_view bytes;
+  std::uint64_t value = 0;
 };
 
 bool ReadVarint(std::string_view data, std::size_t* pos, std::uint64_t* value) {
@@ -37,6 +39,7 @@ bool ForEachField(std::string_view data, const std::function<bool(const Field&)>
     switch (field.wire_type) {
       case kVarint:
         if (!ReadVarint(data, &pos, &value)) return false;
+        field.value = value;
         break;
       case kFixed64:
       case kFixed32: {
@@ -168,9 +171,11 @@ std::string TensorProblem(std::string_view tensor) {
   const bool parsed = ForEachField(tensor, [&](const Field& field) {
     switch (field.number) {
       case 1:
-        if (field.wire_type == kVarint) return true;  // value skipped: counted below
-        return CountValues(field, 0, &dim_count, &dims);
+        if (field.wire_type != kVarint) return CountValues(field, 0, &dim_count, &dims);
+        dims.push_back(field.value);
+        return true;
       case 2:
+        if (field.wire_type == kVarint) data_type = field.value;
         return true;
       case 4:
         return CountValues(field, 4, &floats);
@@ -189,30 +194,14 @@ std::string TensorProblem(std::string_view tensor) {
         return CountValues(field, 8, &doubles);
       case 11:
         return CountValues(field, 0, &uint64s);
+      case 14:
+        if (field.wire_type == kVarint) external = field.value != 0;
+        return true;
       default:
         return true;
     }
   });
   if (!parsed) return "malformed";
-  // ForEachField does not keep varint values: data_type (2), unpacked dims (1) and
-  // data_location (14) are read here.
-  std::size_t pos = 0;
-  while (pos < tensor.size()) {
-    std::uint64_t key = 0, value = 0;
-    if (!ReadVarint(tensor, &pos, &key)) return "malformed";
-    const std::uint64_t wire = key & 7, number = key >> 3;
-    if (wire == kVarint) {
-      if (!ReadVarint(tensor, &pos, &value)) return "malformed";
-      if (number == 1) dims.push_back(value);
-      if (number == 2) data_type = value;
-      if (number == 14) external = value != 0;
-    } else if (wire == kLengthDelimited) {
-      if (!ReadVarint(tensor, &pos, &value) || value > tensor.size() - pos) return "malformed";
-      pos += static_cast<std::size_t>(value);
-    } else {
-      pos += wire == kFixed64 ? 8 : 4;
-    }
-  }
   if (external) return "its data is in an external file (not supported)";
   std::uint64_t elements = 1;
   constexpr std::uint64_t kMaxElements = std::uint64_t{1} << 31;
@@ -249,28 +238,17 @@ std::string AttributeProblem(std::string_view attribute) {
     return {};
   }
   std::vector<std::uint64_t> values;
-  std::size_t pos = 0;
-  while (pos < attribute.size()) {
-    std::uint64_t key = 0, value = 0;
-    if (!ReadVarint(attribute, &pos, &key)) return "malformed";
-    const std::uint64_t wire = key & 7, number = key >> 3;
-    if (wire == kVarint) {
-      if (!ReadVarint(attribute, &pos, &value)) return "malformed";
-      if (number == 3 || number == 8) values.push_back(value);
-    } else if (wire == kLengthDelimited) {
-      if (!ReadVarint(attribute, &pos, &value) || value > attribute.size() - pos) {
-        return "malformed";
-      }
-      if (number == 8) {  // packed ints
-        std::uint64_t count = 0;
-        if (!CountValues({8, kLengthDelimited, attribute.substr(pos, value)}, 0, &count, &values)) {
-          return "malformed";
+  std::uint64_t count = 0;
+  if (!ForEachField(attribute, [&](const Field& field) {
+        if (field.number == 3 && field.wire_type == kVarint) values.push_back(field.value);
+        if (field.number != 8) return true;
+        if (field.wire_type == kVarint) {
+          values.push_back(field.value);
+          return true;
         }
-      }
-      pos += static_cast<std::size_t>(value);
-    } else {
-      pos += wire == kFixed64 ? 8 : 4;
-    }
+        return field.wire_type != kLengthDelimited || CountValues(field, 0, &count, &values);
+      })) {
+    return "malformed";
   }
   for (const std::uint64_t value : values) {
     const auto signed_value = static_cast<std::int64_t>(value);
@@ -316,20 +294,14 @@ std::optional<std::vector<std::int64_t>> TensorDims(std::string_view value_info)
   const bool ok = ForEachField(*shape, [&](const Field& dim) {
     if (dim.number != 1 || dim.wire_type != kLengthDelimited) return true;
     std::int64_t value = -1;  // dim_param (a symbolic size) or nothing: unknown
-    // ForEachField does not keep varint values: Dimension.dim_value (field 1) is read here.
-    std::size_t pos = 0;
-    while (pos < dim.bytes.size()) {
-      std::uint64_t key = 0, raw = 0;
-      if (!ReadVarint(dim.bytes, &pos, &key)) return false;
-      if ((key & 7) == kVarint) {
-        if (!ReadVarint(dim.bytes, &pos, &raw)) return false;
-        if ((key >> 3) == 1) value = static_cast<std::int64_t>(raw);
-      } else if ((key & 7) == kLengthDelimited) {
-        if (!ReadVarint(dim.bytes, &pos, &raw) || raw > dim.bytes.size() - pos) return false;
-        pos += static_cast<std::size_t>(raw);
-      } else {
-        return false;
-      }
+    // Dimension has only varint and string fields: a fixed-width one means it is not one.
+    if (!ForEachField(dim.bytes, [&](const Field& part) {
+          if (part.number == 1 && part.wire_type == kVarint) {
+            value = static_cast<std::int64_t>(part.value);
+          }
+          return part.wire_type == kVarint || part.wire_type == kLengthDelimited;
+        })) {
+      return false;
     }
     dims.push_back(value);
     return true;
