@@ -247,11 +247,13 @@ Status MappingNode::Save() {
   mapped.map.classes = DefaultClassNames();
   if (semantic_) mapped = semantic_->Current(result.trajectory, contents.occupancy);
   // No run folder holds the frames: the keyframes' images are saved in the map folder itself
-  // ("run": "."), those of keyframes without an image left out; with no image at all the
-  // keyframes name no folder (semantic-amcl-bow then says it needs images).
+  // ("run": "."), those of keyframes without an image left out, and keyframes.json is written
+  // after them (which keyframes it lists is known only then); with no image at all the folder
+  // writer writes the keyframes naming no folder (semantic-amcl-bow then says it needs images).
   semantic::KeyframeDatabase keyframes{"", mapped.keyframes};
+  const bool with_images = keyframe_images_.size() > 0;
   const auto write_images = [&](const std::filesystem::path& staging) -> Status {
-    if (keyframe_images_.size() == 0) return Status::Ok();
+    if (!with_images) return Status::Ok();
     Result<std::vector<semantic::Keyframe>> written =
         keyframe_images_.Write(staging, mapped.keyframes);
     if (!written.ok()) return written.status();
@@ -259,7 +261,7 @@ Status MappingNode::Save() {
     return semantic::WriteKeyframes(staging / "keyframes.json", keyframes);
   };
   contents.semantic = &mapped.map;
-  contents.keyframes = &keyframes;
+  contents.keyframes = with_images ? nullptr : &keyframes;
   SEMCHAIN_RETURN_IF_ERROR(semantic::WriteMapFolder(parameters_.out, contents, write_images));
   saved_at_ = {slam_.size(), MappedFrames()};
   ROS_INFO("semchain_ros: saved %s: %zu scans, %zu objects, %zu chains, %zu keyframes (%s)",
