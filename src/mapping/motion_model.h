@@ -10,6 +10,14 @@
 // (the motion between two processed scans in the frame of the first) with Gaussian noise whose
 // standard deviations grow with the distance travelled and the angle turned (the noise model
 // of GMapping's srr, srt, str, stt; Probabilistic Robotics §5.4 in spirit).
+//
+// GMapping draws that noise at every odometry reading, not once per processed scan: the errors of
+// the ~10–20 readings between two processed scans are independent, so their spread grows with the
+// square root of the readings' count, not linearly with the whole increment. One draw over the
+// whole increment is about four times too wide on wheel odometry (aces: σ_θ 17° instead of 4° for
+// a 1 m step), and in places that do not constrain the heading (a round hall) the scan match
+// then keeps whatever heading the draw gave (issue 21). With per_reading_noise the filter feeds
+// every reading's step to a MotionStep, whose covariance is propagated as the readings compose.
 namespace semchain::mapping {
 
 // The defaults suit the scan-matched odometry the filter sees by default (LaserOdometryOptions);
@@ -22,29 +30,60 @@ struct MotionModelOptions {
   // Floors that keep the density proper when the robot barely moved.
   double min_translation_sigma_meters = 0.002;
   double min_rotation_sigma_radians = 0.001;
+  // true: the noise accumulates reading by reading, as GMapping draws it; false: one draw over
+  // the increment between two processed scans.
+  bool per_reading_noise = false;
 
   bool Validate(std::string* error) const;
+};
+
+// An odometry increment with the covariance of its noise (x, y, θ in the frame of the
+// increment's end: the noisy pose is previous ⊕ increment ⊕ noise).
+struct MotionStep {
+  Pose2 increment;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
 class MotionModel {
  public:
   explicit MotionModel(const MotionModelOptions& options);
 
-  // Standard deviations (x, y, θ) of the noise on 'increment', in the robot frame.
+  // Standard deviations (x, y, θ) of one draw of noise on 'increment', in the robot frame.
   Eigen::Vector3d Sigmas(const Pose2& increment) const;
+  // The increment with one draw's covariance (the floors applied).
+  MotionStep Step(const Pose2& increment) const;
+  // Appends one reading's 'step' to 'total': total ⊕ step, the covariance propagated to the new
+  // end frame to first order (the heading noise so far moves the step's translation) plus the
+  // step's own noise without floors, so that standing still adds nothing.
+  void Accumulate(const Pose2& step, MotionStep* total) const;
+  // Standard deviations of 'step' (its covariance's diagonal, floors applied).
+  Eigen::Vector3d Sigmas(const MotionStep& step) const;
   // The predicted pose without noise: previous ⊕ increment.
   static Pose2 Predict(const Pose2& previous, const Pose2& increment) {
     return previous * increment;
   }
-  // Draws x_t ~ p(x_t | previous, increment).
-  Pose2 Sample(const Pose2& previous, const Pose2& increment, Rng& rng) const;
-  // log p(x | previous, increment) up to a constant: the Gaussian of Sigmas() evaluated on the
-  // difference between 'x' and the prediction, in the prediction's frame.
-  double LogDensity(const Pose2& x, const Pose2& previous, const Pose2& increment) const;
+  // Draws x_t ~ p(x_t | previous, step).
+  Pose2 Sample(const Pose2& previous, const MotionStep& step, Rng& rng) const;
+  Pose2 Sample(const Pose2& previous, const Pose2& increment, Rng& rng) const {
+    return Sample(previous, Step(increment), rng);
+  }
+  // log p(x | previous, step) up to a constant: the Gaussian of the step's covariance evaluated
+  // on the difference between 'x' and the prediction, in the prediction's frame.
+  double LogDensity(const Pose2& x, const Pose2& previous, const MotionStep& step) const;
+  double LogDensity(const Pose2& x, const Pose2& previous, const Pose2& increment) const {
+    return LogDensity(x, previous, Step(increment));
+  }
 
   const MotionModelOptions& options() const { return options_; }
 
  private:
+  // The covariance with its diagonal raised to the floors.
+  Eigen::Matrix3d Floored(const Eigen::Matrix3d& covariance) const;
+  // One draw's σ_xy and σ_θ on 'increment', without floors.
+  Eigen::Vector2d LinearSigmas(const Pose2& increment) const;
+  // One draw's covariance on 'increment', without floors.
+  Eigen::Matrix3d RawCovariance(const Pose2& increment) const;
+
   MotionModelOptions options_;
 };
 

@@ -31,17 +31,17 @@ bool ProposalOptions::Validate(std::string* error) const {
 
 ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoints& points,
                                     const MotionModel& motion, const Pose2& previous,
-                                    const Pose2& increment, const HillClimbingOptions& matcher,
+                                    const MotionStep& step, const HillClimbingOptions& matcher,
                                     const ProposalOptions& options, Rng& rng) {
   ProposalEvaluation evaluation;
-  const Pose2 prediction = MotionModel::Predict(previous, increment);
+  const Pose2 prediction = MotionModel::Predict(previous, step.increment);
   evaluation.mode = prediction;
-  const Eigen::Vector3d motion_sigmas = motion.Sigmas(increment);
+  const Eigen::Vector3d motion_sigmas = motion.Sigmas(step);
   double window_xy = 3.0 * motion_sigmas.x();
   double window_theta = 3.0 * motion_sigmas.z();
   if (options.use_scan_matching) {
     const Pose2 start =
-        options.match_from_motion_sample ? motion.Sample(previous, increment, rng) : prediction;
+        options.match_from_motion_sample ? motion.Sample(previous, step, rng) : prediction;
     const MatchResult match = MatchWithHeadingSearch(field, points, start, matcher,
                                                      options.heading_search, motion_sigmas.z());
     evaluation.matched = match.evaluation.matched >= options.min_matched_points;
@@ -59,8 +59,8 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
   evaluation.log_volume = std::log(8.0 * window_xy * window_xy * window_theta);
   auto evaluate = [&](const Pose2& pose) {
     const double observation = field.Evaluate(points, pose).log_likelihood;
-    evaluation.samples.push_back({pose, options.observation_gain * observation,
-                                  motion.LogDensity(pose, previous, increment)});
+    evaluation.samples.push_back(
+        {pose, options.observation_gain * observation, motion.LogDensity(pose, previous, step)});
   };
   evaluate(evaluation.mode);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);

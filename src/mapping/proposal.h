@@ -65,11 +65,11 @@ struct ProposalEvaluation {
   std::vector<ProposalSample> samples;
 };
 
-// Scan-matches 'points' from the prediction previous ⊕ increment (or a motion-model draw) and
-// evaluates K poses around the mode (eq. 4 and 5 need both likelihoods at each x_j).
+// Scan-matches 'points' from the prediction previous ⊕ step.increment (or a motion-model draw)
+// and evaluates K poses around the mode (eq. 4 and 5 need both likelihoods at each x_j).
 ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoints& points,
                                     const MotionModel& motion, const Pose2& previous,
-                                    const Pose2& increment, const HillClimbingOptions& matcher,
+                                    const MotionStep& step, const HillClimbingOptions& matcher,
                                     const ProposalOptions& options, Rng& rng);
 
 // The Gaussian fitted to the samples weighted by p(z | ·)^a p(· | x_{t-1}, u)^b.

@@ -88,8 +88,8 @@ TEST(EvaluateProposalTest, ScanMatchedModeIsNearTheTruth) {
   const MotionModel motion({});
   Rng rng = MakeRng(1);
   const LikelihoodField field(grid, {});
-  const ProposalEvaluation evaluation =
-      EvaluateProposal(field, points, motion, previous, odometry_increment, {}, {}, rng);
+  const ProposalEvaluation evaluation = EvaluateProposal(
+      field, points, motion, previous, motion.Step(odometry_increment), {}, {}, rng);
   ASSERT_TRUE(evaluation.matched);
   EXPECT_NEAR(evaluation.mode.x, truth.x, 0.01);
   EXPECT_NEAR(evaluation.mode.y, truth.y, 0.01);

@@ -73,14 +73,22 @@ bool RbpfSlam::AddScan(const StampedScan& scan, int index) {
     Initialize(prepared, scan.odometry, index);
     return true;
   }
+  motion_.Accumulate(previous_odometry_.Between(scan.odometry), &pending_motion_);
+  previous_odometry_ = scan.odometry;
   const Pose2 increment = last_odometry_.Between(scan.odometry);
   const bool moved = std::hypot(increment.x, increment.y) >= options_.linear_update_meters ||
                      std::abs(increment.theta) >= options_.angular_update_radians;
   if (!moved) return false;
   last_odometry_ = scan.odometry;
   ++statistics_.processed;
+  // The increment is taken from the two odometry poses themselves (the composed readings may
+  // differ from it by rounding); only the noise comes from the readings.
+  const MotionStep step = options_.motion.per_reading_noise
+                              ? MotionStep{increment, pending_motion_.covariance}
+                              : motion_.Step(increment);
+  pending_motion_ = MotionStep{};
   Propose(SelectMatchPoints(prepared, options_.match_max_range_meters, options_.match_beam_step),
-          increment);
+          step);
   Resample();
   UpdateMaps(prepared, index);
   return true;
@@ -94,20 +102,21 @@ void RbpfSlam::Initialize(const PreparedScan& scan, const Pose2& odometry, int i
   particles_.assign(static_cast<std::size_t>(options_.particles),
                     Particle{odometry, 0.0, 0.0, map, node});
   last_odometry_ = odometry;
+  previous_odometry_ = odometry;
   initialized_ = true;
   ++statistics_.processed;
 }
 
-void RbpfSlam::Propose(const MatchPoints& points, const Pose2& increment) {
+void RbpfSlam::Propose(const MatchPoints& points, const MotionStep& step) {
   const int n = static_cast<int>(particles_.size());
   std::vector<ProposalEvaluation> evaluations(particles_.size());
   std::vector<DominantModel> votes(particles_.size(), DominantModel::kObservation);
-  const Eigen::Vector3d motion_sigmas = motion_.Sigmas(increment);
+  const Eigen::Vector3d motion_sigmas = motion_.Sigmas(step);
   ParallelFor(n, threads_, [&](int i) {
     const Particle& particle = particles_[i];
     const LikelihoodField field(*particle.map, options_.field);
-    evaluations[i] = EvaluateProposal(field, points, motion_, particle.pose, increment,
-                                      options_.matcher, options_.proposal, rngs_[i]);
+    evaluations[i] = EvaluateProposal(field, points, motion_, particle.pose, step, options_.matcher,
+                                      options_.proposal, rngs_[i]);
     if (options_.annealing.enabled) {
       votes[i] = ClassifyStep(options_.annealing, evaluations[i], options_.proposal, motion_sigmas);
     }

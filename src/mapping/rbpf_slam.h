@@ -84,7 +84,7 @@ class RbpfSlam {
 
  private:
   void Initialize(const PreparedScan& scan, const Pose2& odometry, int index);
-  void Propose(const MatchPoints& points, const Pose2& increment);
+  void Propose(const MatchPoints& points, const MotionStep& step);
   void Resample();
   void UpdateMaps(const PreparedScan& scan, int index);
 
@@ -95,7 +95,9 @@ class RbpfSlam {
   std::vector<Rng> rngs_;  // one per particle slot
   Rng resampling_rng_;
   bool initialized_ = false;
-  Pose2 last_odometry_;
+  Pose2 last_odometry_;        // at the last processed scan
+  Pose2 previous_odometry_;    // at the last scan
+  MotionStep pending_motion_;  // the readings since the last processed scan
   RbpfStatistics statistics_;
   double sum_neff_ = 0.0;
   double sum_alpha_ = 0.0;

@@ -91,7 +91,9 @@ Status ReadModelSections(const yaml::Node& root, RbpfOptions* o) {
                                         {"likelihood_sigma_meters", &f.likelihood_sigma_meters},
                                         {"max_distance_meters", &f.max_distance_meters}}));
   SEMCHAIN_RETURN_IF_ERROR(ReadSection(root, "matcher", MatcherFields(&o->matcher)));
-  return ReadSection(root, "motion", MotionFields(&o->motion));
+  Fields motion = MotionFields(&o->motion);
+  motion.emplace_back("per_reading_noise", &o->motion.per_reading_noise);
+  return ReadSection(root, "motion", motion);
 }
 
 Status ReadFilterSections(const yaml::Node& root, RbpfOptions* o) {

@@ -31,6 +31,7 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(loaded.laser_odometry.prior.min_rotation_sigma_radians,
                    defaults.laser_odometry.prior.min_rotation_sigma_radians);
   EXPECT_EQ(loaded.every_scan.refinement.lines_only, defaults.every_scan.refinement.lines_only);
+  EXPECT_EQ(loaded.rbpf.motion.per_reading_noise, defaults.rbpf.motion.per_reading_noise);
   EXPECT_EQ(loaded.pose_graph, defaults.pose_graph);
   const LoopClosureOptions& l = loaded.loop_closure;
   const LoopClosureOptions& d = defaults.loop_closure;
@@ -63,6 +64,7 @@ TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
   SlamOptions gmapping;
   ASSERT_TRUE(LoadSlamOptions(kConfigDir / "slam-gmapping.yaml", &gmapping).ok());
   EXPECT_FALSE(gmapping.laser_odometry.enabled);
+  EXPECT_TRUE(gmapping.rbpf.motion.per_reading_noise);
 }
 
 TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
