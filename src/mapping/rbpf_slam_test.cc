@@ -151,6 +151,36 @@ TEST(RbpfSlamTest, WheelOdometryThatStallsOnATurnIsCorrectedByTheScans) {
   }
 }
 
+// Where the scans constrain nothing (here: no returns at all) the proposal is the motion model,
+// so the particles spread as it says. Driving 1 m in ten 0.1 m readings, GMapping's per-reading
+// noise gives σ_θ = 0.2 · 0.1 · √10 = 0.063 rad, √10 times less than the 0.2 rad of one draw
+// over the metre — which in a round hall (ACES) let wrong headings stay.
+TEST(RbpfSlamTest, ParticlesSpreadAsTheReadingsNoiseWhereScansSayNothing) {
+  const std::vector<testing::Segment> nothing;
+  auto heading_spread = [&](bool per_reading) {
+    RbpfOptions options = SmallFilter(400);
+    options.linear_update_meters = 1.0;
+    options.angular_update_radians = 0.5;
+    options.motion = {0.1, 0.1, 0.2, 0.2};
+    options.motion.per_reading_noise = per_reading;
+    RbpfSlam slam(options);
+    for (int i = 0; i <= 10; ++i) {
+      const Pose2 odometry(0.1 * i, 0.0, 0.0);
+      slam.AddScan({testing::SimulateScan(nothing, odometry), odometry, odometry}, i);
+    }
+    EXPECT_EQ(slam.statistics().processed, 2);
+    double sum_squares = 0.0;
+    for (const Particle& p : slam.particles()) sum_squares += p.pose.theta * p.pose.theta;
+    return std::sqrt(sum_squares / static_cast<double>(slam.particles().size()));
+  };
+  const double per_reading = heading_spread(true), one_draw = heading_spread(false);
+  // The Gaussian fitted to 17 weighted samples of a ±3σ window shrinks both by the same factor
+  // (about 0.7), so their ratio is the figure to check.
+  EXPECT_NEAR(per_reading / one_draw, 1.0 / std::sqrt(10.0), 0.05);
+  EXPECT_GT(one_draw, 0.5 * 0.2);
+  EXPECT_LT(one_draw, 0.2);
+}
+
 TEST(ScanLocalizerTest, InterpolationReanchorsOdometryOnCorrectedScans) {
   // Odometry with a constant offset; the corrected poses remove it, linearly in time between.
   const std::vector<Pose2> odometry = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
