@@ -18,6 +18,8 @@
 // a 1 m step), and in places that do not constrain the heading (a round hall) the scan match
 // then keeps whatever heading the draw gave (issue 21). With per_reading_noise the filter feeds
 // every reading's step to a MotionStep, whose covariance is propagated as the readings compose.
+// It fixed most ACES failures but broke FR079 maps that were fine (README, "SLAM on the three raw
+// logs"), so it is off by default.
 namespace semchain::mapping {
 
 // The defaults suit the scan-matched odometry the filter sees by default (LaserOdometryOptions);

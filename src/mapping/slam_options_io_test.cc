@@ -64,7 +64,6 @@ TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
   SlamOptions gmapping;
   ASSERT_TRUE(LoadSlamOptions(kConfigDir / "slam-gmapping.yaml", &gmapping).ok());
   EXPECT_FALSE(gmapping.laser_odometry.enabled);
-  EXPECT_TRUE(gmapping.rbpf.motion.per_reading_noise);
 }
 
 TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
