@@ -139,13 +139,25 @@ Result<nlohmann::json> Score(const std::filesystem::path& dir, const Reference& 
     if (!errors.ok()) return errors.status();
     return nlohmann::json::parse(eval::RelationErrorsToJson(*errors));
   }
-  const Result<eval::AteResult> ate = eval::EvaluateAte(*trajectory, reference.truth);
+  // The run gives a pose for every scan of the perturbed log (its first --max-scans), in the
+  // log's order, and the truth is that log's corrected poses: they pair by index, which also
+  // scores logs whose timestamps are broken (Killian, FR-campus).
+  if (trajectory->size() > reference.truth.size()) {
+    return Status::Error("the run has " + std::to_string(trajectory->size()) +
+                         " poses for a log of " + std::to_string(reference.truth.size()) +
+                         " scans");
+  }
+  const std::vector<StampedPose> truth(
+      reference.truth.begin(),
+      reference.truth.begin() + static_cast<std::ptrdiff_t>(trajectory->size()));
+  eval::AteOptions by_index;
+  by_index.pair_by_index = true;
+  const Result<eval::AteResult> ate = eval::EvaluateAte(*trajectory, truth, by_index);
   if (!ate.ok()) return ate.status();
   nlohmann::json json = nlohmann::json::parse(eval::AteResultToJson(*ate));
-  eval::AteOptions aligned;
+  eval::AteOptions aligned = by_index;
   aligned.align = true;
-  const Result<eval::AteResult> with_alignment =
-      eval::EvaluateAte(*trajectory, reference.truth, aligned);
+  const Result<eval::AteResult> with_alignment = eval::EvaluateAte(*trajectory, truth, aligned);
   if (with_alignment.ok()) json["ate_rmse_aligned_m"] = with_alignment->ate_rmse_m;
   return json;
 }

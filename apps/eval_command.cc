@@ -88,6 +88,9 @@ void AddAte(CLI::App& eval, int& exit_code) {
   command->add_option("--truth", args->truth, "True trajectory, e.g. RUN/truth.txt")->required();
   command->add_flag("--align", args->options.align,
                     "First fit the estimate to the truth with the best SE(2) transform");
+  command->add_flag("--pair-by-index", args->options.pair_by_index,
+                    "Score the i-th pose against the i-th truth pose (same count; timestamps "
+                    "ignored): for logs whose timestamps cannot pair the poses");
   command
       ->add_option("--tolerance", args->options.timestamp_tolerance_s,
                    "Seconds within which the nearest truth pose is used as is")

@@ -31,16 +31,46 @@ Pose2 FitRigidTransform2D(const std::vector<Pose2>& from, const std::vector<Pose
   return Pose2(to_mean.x() - rotated.x(), to_mean.y() - rotated.y(), angle);
 }
 
+namespace {
+
+Status CheckDistinctTimestamps(const std::vector<StampedPose>& truth) {
+  std::vector<double> stamps;
+  stamps.reserve(truth.size());
+  for (const StampedPose& pose : truth) stamps.push_back(pose.timestamp);
+  std::sort(stamps.begin(), stamps.end());
+  const auto same = std::adjacent_find(stamps.begin(), stamps.end());
+  if (same == stamps.end()) return Status::Ok();
+  const auto count = std::count(stamps.begin(), stamps.end(), *same);
+  return Status::Error("the truth has " + std::to_string(count) + " poses at time " +
+                       std::to_string(*same) +
+                       ": timestamps cannot pair the poses (pair them by index instead)");
+}
+
+}  // namespace
+
 Result<AteResult> EvaluateAte(const std::vector<StampedPose>& estimate,
                               const std::vector<StampedPose>& truth, const AteOptions& options) {
-  const TrajectoryLookup lookup(truth);
   std::vector<Pose2> estimated, reference;
-  for (const StampedPose& pose : estimate) {
-    const std::optional<Pose2> true_pose =
-        lookup.At(pose.timestamp, options.timestamp_tolerance_s, options.max_interpolation_gap_s);
-    if (!true_pose) continue;
-    estimated.push_back(pose.pose);
-    reference.push_back(*true_pose);
+  if (options.pair_by_index) {
+    if (estimate.size() != truth.size()) {
+      return Status::Error("pairing by index needs as many estimated poses as truth poses (" +
+                           std::to_string(estimate.size()) + " vs " + std::to_string(truth.size()) +
+                           ")");
+    }
+    for (std::size_t i = 0; i < estimate.size(); ++i) {
+      estimated.push_back(estimate[i].pose);
+      reference.push_back(truth[i].pose);
+    }
+  } else {
+    SEMCHAIN_RETURN_IF_ERROR(CheckDistinctTimestamps(truth));
+    const TrajectoryLookup lookup(truth);
+    for (const StampedPose& pose : estimate) {
+      const std::optional<Pose2> true_pose =
+          lookup.At(pose.timestamp, options.timestamp_tolerance_s, options.max_interpolation_gap_s);
+      if (!true_pose) continue;
+      estimated.push_back(pose.pose);
+      reference.push_back(*true_pose);
+    }
   }
   AteResult result;
   result.poses = estimate.size();

@@ -22,6 +22,10 @@ struct AteOptions {
   // When true, the estimate is first moved by the SE(2) transform that best fits its positions
   // to the truth's in the least-squares sense (Umeyama 1991 / Horn 1987, without scale).
   bool align = false;
+  // true: the i-th estimate pose is scored against the i-th truth pose (both sequences the same
+  // length), timestamps ignored — for estimates made scan by scan from a log whose timestamps
+  // cannot pair them (the corrected Killian and FR-campus logs stamp nearly every scan alike).
+  bool pair_by_index = false;
 };
 
 struct AteResult {
@@ -39,7 +43,9 @@ struct AteResult {
 // 'from' and 'to' have the same size (at least 1).
 Pose2 FitRigidTransform2D(const std::vector<Pose2>& from, const std::vector<Pose2>& to);
 
-// Scores 'estimate' against 'truth' (both in any order). Fails when no pose matches.
+// Scores 'estimate' against 'truth' (both in any order, unless paired by index). Fails when no
+// pose matches, when paired by index and the lengths differ, and when pairing by time and two
+// truth poses share a timestamp (the pairing would be arbitrary).
 Result<AteResult> EvaluateAte(const std::vector<StampedPose>& estimate,
                               const std::vector<StampedPose>& truth,
                               const AteOptions& options = {});

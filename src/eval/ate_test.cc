@@ -94,6 +94,37 @@ TEST(AteTest, NoMatchIsAnError) {
             "none of the 1 estimated poses has a truth pose at its time");
 }
 
+// The corrected Killian log stamps 1937 of its 1941 scans 4294967296 s: a time lookup would
+// pair every estimate pose with one arbitrary truth pose and report nonsense, so it is refused.
+TEST(AteTest, TruthPosesSharingATimestampCannotBePairedByTime) {
+  const std::vector<StampedPose> truth = {
+      {0.5, Pose2(0, 0, 0)}, {4294967296.0, Pose2(1, 0, 0)}, {4294967296.0, Pose2(2, 0, 0)}};
+  const Result<AteResult> result = EvaluateAte(truth, truth);
+  ASSERT_FALSE(result.ok());
+  EXPECT_NE(result.status().message().find("2 poses at time 4294967296"), std::string::npos)
+      << result.status().message();
+}
+
+TEST(AteTest, PairingByIndexIgnoresTimestamps) {
+  const std::vector<StampedPose> truth = {
+      {0.0, Pose2(0, 0, 0)}, {0.0, Pose2(1, 0, 0)}, {0.0, Pose2(2, 0, 0.5)}, {0.0, Pose2(3, 1, 1)}};
+  std::vector<StampedPose> estimate = truth;
+  for (StampedPose& pose : estimate) pose.timestamp = 7.0;  // nothing to pair by time
+  estimate[2].pose = Pose2(2.3, 0.4, 0.5);                  // 0.5 m off
+  AteOptions options;
+  options.pair_by_index = true;
+  const Result<AteResult> result = EvaluateAte(estimate, truth, options);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  EXPECT_EQ(result->matched, 4u);
+  EXPECT_NEAR(result->ate_rmse_m, std::sqrt(0.25 / 4), 1e-12);
+  EXPECT_NEAR(result->ate_max_m, 0.5, 1e-12);
+
+  estimate.pop_back();
+  const Result<AteResult> shorter = EvaluateAte(estimate, truth, options);
+  ASSERT_FALSE(shorter.ok());
+  EXPECT_NE(shorter.status().message().find("(3 vs 4)"), std::string::npos);
+}
+
 TEST(AteTest, JsonHasTheDesignKeysInOrder) {
   AteResult result;
   result.poses = 4;
