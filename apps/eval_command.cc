@@ -43,7 +43,9 @@ int RunAte(const std::string& poses_path, const std::string& truth_path,
   const Result<std::vector<StampedPose>> truth = ReadPoses(truth_path);
   if (!truth.ok()) return ReportError(truth.status());
   const Result<eval::AteResult> result = eval::EvaluateAte(*poses, *truth, options);
-  if (!result.ok()) return ReportError(result.status().WithContext(poses_path));
+  if (!result.ok()) {
+    return ReportError(result.status().WithContext(poses_path + " against " + truth_path));
+  }
   std::cout << eval::AteResultToJson(*result) << std::endl;
   return 0;
 }

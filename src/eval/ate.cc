@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/angles.h"
 #include "io/trajectory_lookup.h"
@@ -41,9 +43,10 @@ Status CheckDistinctTimestamps(const std::vector<StampedPose>& truth) {
   const auto same = std::adjacent_find(stamps.begin(), stamps.end());
   if (same == stamps.end()) return Status::Ok();
   const auto count = std::count(stamps.begin(), stamps.end(), *same);
-  return Status::Error("the truth has " + std::to_string(count) + " poses at time " +
-                       std::to_string(*same) +
-                       ": timestamps cannot pair the poses (pair them by index instead)");
+  std::ostringstream message;
+  message << "the truth has " << count << " poses at time " << std::setprecision(12) << *same
+          << " s: timestamps cannot pair the poses (pair them by index instead)";
+  return Status::Error(message.str());
 }
 
 }  // namespace
