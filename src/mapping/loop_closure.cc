@@ -22,6 +22,10 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "search_every_nodes must be >= 1";
     return false;
   }
+  if (max_built_submaps < 1) {
+    *error = "max_built_submaps must be >= 1";
+    return false;
+  }
   if (!(linear_window_meters > 0.0) || !(max_linear_window_meters >= linear_window_meters) ||
       !(linear_window_per_meter >= 0.0)) {
     *error = "linear windows must be positive, growing and max >= the start";
@@ -64,18 +68,50 @@ struct Submap {
   int first = 0;
   int last = 0;
   OccupancyGrid grid;
-  // Once finished: the match grid and its matcher (which refers to the grid).
+  bool finished = false;
+  // Once finished: the match grid's centre and the radius of its extent around it (metres)...
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double radius = 0.0;
+  // ...and, while built, the match grid and its matcher (which refers to the grid).
   std::unique_ptr<MatchGrid> match_grid;
   std::unique_ptr<BranchAndBoundMatcher> matcher;
-  double radius = 0.0;  // of the grid's extent around its centre, metres
+  std::uint64_t last_used = 0;  // search counter when it was last needed built
 };
 
-void Finish(Submap* submap, const LoopClosureOptions& options) {
+void Build(Submap* submap, const LoopClosureOptions& options) {
   submap->match_grid =
       std::make_unique<MatchGrid>(MakeMatchGrid(GridToMapImage(submap->grid), options.match_grid));
   submap->matcher = std::make_unique<BranchAndBoundMatcher>(*submap->match_grid, options.matcher);
+}
+
+void Finish(Submap* submap, const LoopClosureOptions& options) {
+  Build(submap, options);
+  submap->finished = true;
+  submap->center = submap->match_grid->Center();
   submap->radius = 0.5 * submap->match_grid->resolution *
                    std::hypot(submap->match_grid->width, submap->match_grid->height);
+}
+
+// Builds 'wanted' if needed and marks it used at 'tick'; then, while more than
+// options.max_built_submaps finished submaps are built, frees the least recently used one other
+// than 'wanted' and 'keep' (may be null).
+void Acquire(Submap* wanted, const Submap* keep, std::uint64_t tick, std::vector<Submap>* submaps,
+             const LoopClosureOptions& options) {
+  if (!wanted->matcher) Build(wanted, options);
+  wanted->last_used = tick;
+  while (true) {
+    Submap* oldest = nullptr;
+    int built = 0;
+    for (Submap& submap : *submaps) {
+      if (!submap.matcher) continue;
+      ++built;
+      if (&submap == wanted || &submap == keep) continue;
+      if (oldest == nullptr || submap.last_used < oldest->last_used) oldest = &submap;
+    }
+    if (built <= options.max_built_submaps || oldest == nullptr) return;
+    oldest->matcher.reset();
+    oldest->match_grid.reset();
+  }
 }
 
 PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
@@ -109,6 +145,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
   std::vector<PoseGraphEdge> edges;
   std::vector<double> travel(n, 0.0);
   std::vector<Submap> submaps;
+  std::uint64_t tick = 0;  // counts submap uses, for the built-submap cache
   double travel_at_closure = 0.0;
 
   for (std::size_t i = 0; i < n; ++i) {
@@ -124,8 +161,13 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     // The submap this node's scan goes into.
     if (submaps.empty() || travel[i] - travel[static_cast<std::size_t>(submaps.back().first)] >
                                options.submap_travel_meters) {
-      if (!submaps.empty()) Finish(&submaps.back(), options);
-      submaps.push_back(Submap{node, node, OccupancyGrid(options.submap_grid), nullptr, nullptr});
+      if (!submaps.empty()) {
+        Finish(&submaps.back(), options);
+        Acquire(&submaps.back(), nullptr, ++tick, &submaps, options);
+      }
+      submaps.emplace_back();
+      submaps.back().first = node;
+      submaps.back().grid = OccupancyGrid(options.submap_grid);
     }
     Submap& open = submaps.back();
     open.last = node;
@@ -146,16 +188,18 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
         std::min(options.max_angular_window_radians,
                  options.angular_window_radians + options.angular_window_per_meter * since);
     bool searched = false;
-    const Submap* best_submap = nullptr;
+    Submap* best_submap = nullptr;
     BranchAndBoundResult best;
-    for (const Submap& submap : submaps) {
-      if (!submap.matcher || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
-                                 options.min_loop_travel_meters) {
+    for (Submap& submap : submaps) {
+      if (!submap.finished || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
+                                  options.min_loop_travel_meters) {
         continue;
       }
       window.center = estimate[static_cast<std::size_t>(submap.first)].Between(estimate[i]);
       const double reach = window.linear_window_meters + submap.radius;
-      if ((window.center.translation() - submap.match_grid->Center()).norm() > reach) continue;
+      if ((window.center.translation() - submap.center).norm() > reach) continue;
+      // The best submap so far stays built: its match grid refines the closure below.
+      Acquire(&submap, best_submap, ++tick, &submaps, options);
       searched = true;
       const BranchAndBoundResult match =
           submap.matcher->Match(points.points, window, std::max(options.min_score, best.score));

@@ -27,6 +27,10 @@ struct LoopClosureOptions {
   OccupancyGridOptions submap_grid;
   MatchGridOptions match_grid;
   BranchAndBoundOptions matcher{6, 0.0};
+  // Finished submaps whose match grid and precomputed matcher are kept built (the ones searched
+  // most recently); the others keep only their occupancy grid and are rebuilt, identically, when
+  // a search reaches them again. Bounds the memory of long runs (a campus: ~100 submaps).
+  int max_built_submaps = 12;
   // A submap is searched only from nodes at least this far along the path after its last
   // node (nearer ones are the filter's own business).
   double min_loop_travel_meters = 30.0;

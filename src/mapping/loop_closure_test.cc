@@ -120,6 +120,27 @@ TEST(LoopClosureTest, ClosingTheLoopsRemovesTheDrift) {
   EXPECT_LT(testing::MaxPositionError(result.poses, run.truth), 0.3) << "before: " << before;
 }
 
+// Submaps freed from the cache are rebuilt identically: keeping one built or all of them gives
+// the same closures and the same poses.
+TEST(LoopClosureTest, TheBuiltSubmapCacheDoesNotChangeTheResult) {
+  const LoopRun run = DriveTwoLaps(DegToRad(0.05));
+  LoopClosureOptions one, all;
+  one.max_built_submaps = 1;
+  all.max_built_submaps = 1000;
+  const LoopClosureResult a = CloseLoops(Pointers(run.scans), run.drifted, one);
+  const LoopClosureResult b = CloseLoops(Pointers(run.scans), run.drifted, all);
+  ASSERT_GT(a.statistics.submaps, 2);
+  EXPECT_EQ(a.statistics.found, b.statistics.found);
+  EXPECT_EQ(a.statistics.accepted, b.statistics.accepted);
+  EXPECT_EQ(a.statistics.residuals, b.statistics.residuals);
+  ASSERT_EQ(a.poses.size(), b.poses.size());
+  for (std::size_t i = 0; i < a.poses.size(); ++i) {
+    EXPECT_EQ(a.poses[i].x, b.poses[i].x) << i;
+    EXPECT_EQ(a.poses[i].y, b.poses[i].y) << i;
+    EXPECT_EQ(a.poses[i].theta, b.poses[i].theta) << i;
+  }
+}
+
 TEST(LoopClosureTest, NoDriftNoHarm) {
   const LoopRun run = DriveTwoLaps(0.0);
   const LoopClosureResult result = CloseLoops(Pointers(run.scans), run.drifted, {});

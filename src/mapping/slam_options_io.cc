@@ -170,16 +170,17 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
   LoopClosureOptions& l = options->loop_closure;
   SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys(
       {"enabled", "submap_travel_meters", "min_loop_travel_meters", "search_every_nodes",
-       "linear_window_meters", "linear_window_per_meter", "max_linear_window_meters",
-       "angular_window_radians", "angular_window_per_meter", "max_angular_window_radians",
-       "min_score", "min_points", "match_max_range_meters", "match_beam_step",
-       "max_residual_sigmas", "loop_sigma_meters", "loop_sigma_radians"}));
+       "max_built_submaps", "linear_window_meters", "linear_window_per_meter",
+       "max_linear_window_meters", "angular_window_radians", "angular_window_per_meter",
+       "max_angular_window_radians", "min_score", "min_points", "match_max_range_meters",
+       "match_beam_step", "max_residual_sigmas", "loop_sigma_meters", "loop_sigma_radians"}));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "enabled", &options->pose_graph));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "submap_travel_meters", &l.submap_travel_meters));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "min_loop_travel_meters", &l.min_loop_travel_meters));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "search_every_nodes", &l.search_every_nodes));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "max_built_submaps", &l.max_built_submaps));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "linear_window_meters", &l.linear_window_meters));
   SEMCHAIN_RETURN_IF_ERROR(

@@ -38,6 +38,7 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(l.submap_travel_meters, d.submap_travel_meters);
   EXPECT_DOUBLE_EQ(l.min_loop_travel_meters, d.min_loop_travel_meters);
   EXPECT_EQ(l.search_every_nodes, d.search_every_nodes);
+  EXPECT_EQ(l.max_built_submaps, d.max_built_submaps);
   EXPECT_DOUBLE_EQ(l.linear_window_meters, d.linear_window_meters);
   EXPECT_DOUBLE_EQ(l.linear_window_per_meter, d.linear_window_per_meter);
   EXPECT_DOUBLE_EQ(l.max_linear_window_meters, d.max_linear_window_meters);
