@@ -14,12 +14,11 @@
 // GMapping draws that noise at every odometry reading, not once per processed scan: the errors of
 // the ~10–20 readings between two processed scans are independent, so their spread grows with the
 // square root of the readings' count, not linearly with the whole increment. One draw over the
-// whole increment is about four times too wide on wheel odometry (aces: σ_θ 17° instead of 4° for
-// a 1 m step), and in places that do not constrain the heading (a round hall) the scan match
-// then keeps whatever heading the draw gave (issue 21). With per_reading_noise the filter feeds
-// every reading's step to a MotionStep, whose covariance is propagated as the readings compose.
-// It fixed most ACES failures but broke FR079 maps that were fine (README, "SLAM on the three raw
-// logs"), so it is off by default.
+// whole increment is about four times wider on wheel odometry (aces: σ_θ 17° instead of 4° for
+// a 1 m step). With per_reading_noise the filter feeds every reading's step to a MotionStep,
+// whose covariance is propagated as the readings compose. It fixed most ACES failures (issue 21)
+// but broke FR079 maps that were fine (README, "SLAM on the three raw logs"), so it is off by
+// default.
 namespace semchain::mapping {
 
 // The defaults suit the scan-matched odometry the filter sees by default (LaserOdometryOptions);

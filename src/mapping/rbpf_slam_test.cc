@@ -154,7 +154,7 @@ TEST(RbpfSlamTest, WheelOdometryThatStallsOnATurnIsCorrectedByTheScans) {
 // Where the scans constrain nothing (here: no returns at all) the proposal is the motion model,
 // so the particles spread as it says. Driving 1 m in ten 0.1 m readings, GMapping's per-reading
 // noise gives σ_θ = 0.2 · 0.1 · √10 = 0.063 rad, √10 times less than the 0.2 rad of one draw
-// over the metre — which in a round hall (ACES) let wrong headings stay.
+// over the metre.
 TEST(RbpfSlamTest, ParticlesSpreadAsTheReadingsNoiseWhereScansSayNothing) {
   const std::vector<testing::Segment> nothing;
   auto heading_spread = [&](bool per_reading) {
