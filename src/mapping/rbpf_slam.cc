@@ -73,8 +73,10 @@ bool RbpfSlam::AddScan(const StampedScan& scan, int index) {
     Initialize(prepared, scan.odometry, index);
     return true;
   }
-  motion_.Accumulate(previous_odometry_.Between(scan.odometry), &pending_motion_);
-  previous_odometry_ = scan.odometry;
+  if (options_.motion.per_reading_noise) {
+    motion_.Accumulate(previous_odometry_.Between(scan.odometry), &pending_motion_);
+    previous_odometry_ = scan.odometry;
+  }
   const Pose2 increment = last_odometry_.Between(scan.odometry);
   const bool moved = std::hypot(increment.x, increment.y) >= options_.linear_update_meters ||
                      std::abs(increment.theta) >= options_.angular_update_radians;

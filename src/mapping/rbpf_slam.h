@@ -95,9 +95,11 @@ class RbpfSlam {
   std::vector<Rng> rngs_;  // one per particle slot
   Rng resampling_rng_;
   bool initialized_ = false;
-  Pose2 last_odometry_;        // at the last processed scan
-  Pose2 previous_odometry_;    // at the last scan
-  MotionStep pending_motion_;  // the readings since the last processed scan
+  Pose2 last_odometry_;  // at the last processed scan
+  // With per_reading_noise: the odometry at the last scan and the readings since the last
+  // processed scan.
+  Pose2 previous_odometry_;
+  MotionStep pending_motion_;
   RbpfStatistics statistics_;
   double sum_neff_ = 0.0;
   double sum_alpha_ = 0.0;
