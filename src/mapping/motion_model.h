@@ -16,9 +16,9 @@
 // square root of the readings' count, not linearly with the whole increment. One draw over the
 // whole increment is about four times wider on wheel odometry (aces: σ_θ 17° instead of 4° for
 // a 1 m step). With per_reading_noise the filter feeds every reading's step to a MotionStep,
-// whose covariance is propagated as the readings compose. It fixed most ACES failures (issue 21)
-// but broke FR079 maps that were fine (README, "SLAM on the three raw logs"), so it is off by
-// default.
+// whose covariance is propagated as the readings compose. It did not reduce the ACES failures
+// (issue 21) and broke FR079 maps that were fine (README, "SLAM on the three raw logs"), so it is
+// off by default.
 namespace semchain::mapping {
 
 // The defaults suit the scan-matched odometry the filter sees by default (LaserOdometryOptions);
