@@ -1,5 +1,5 @@
 // semchain bench reloc --world W.yaml [--live-world W2.yaml] --trials N --seed S
-//                      --methods M1,M2,... [--detector M.onnx] --out DIR
+//                      --methods M1,M2,... [--detector M.onnx] [--runs RUNS] --out DIR
 // The papers' relocalization experiment (DESIGN.md §4): map from a simulated mapping run of
 // --world (SLAM + semantic mapping), trials at random poses in the trial region of --live-world;
 // writes DIR/results.json and DIR/results.md.
@@ -27,6 +27,7 @@ struct BenchRelocArgs {
   eval::RelocBenchmarkOptions options;
   DetectorArgs detector;  // a YOLOv8-format ONNX model instead of the simulator's detections
   int seed = 1;
+  std::string runs;  // keep and reuse the runs here (empty: a temporary folder)
 };
 
 int RunBenchReloc(BenchRelocArgs args) {
@@ -34,6 +35,10 @@ int RunBenchReloc(BenchRelocArgs args) {
   const Status writable = EnsureWritableDirectory(out);
   if (!writable.ok()) return ReportError(writable);
   args.options.seed = static_cast<std::uint64_t>(args.seed);
+  if (!args.runs.empty()) {
+    args.options.work_dir = args.runs;
+    args.options.keep_runs = true;
+  }
   if (!args.detector.model.empty()) {
     Result<RunDetectorFunction> detect = LoadRunDetector(args.detector, /*show_progress=*/false);
     if (!detect.ok()) return ReportError(detect.status());
@@ -91,6 +96,10 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
   AddDetectorOptions(command, &args->detector,
                      "the simulator's detection model (the mapping run's and every trial's)");
   command->add_option("--out", args->out, "Output folder (results.json, results.md)")->required();
+  command->add_option("--runs", args->runs,
+                      "Keep the mapping run (map in DIR/mapping/map) and every trial's recording "
+                      "(DIR/trial_K) here; a later call with the same worlds, seed and trial "
+                      "settings reuses them instead of simulating again");
   command->callback([args, &exit_code] { exit_code = RunBenchReloc(*args); });
 }
 

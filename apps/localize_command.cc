@@ -106,7 +106,9 @@ Status RunLocalize(const LocalizeArgs& args) {
                            {"scans", inputs.scans.size()},
                            {"cpu_ms", 1000.0 * trace.cpu_seconds.back()},
                            {"iterations", trace.iterations.back()},
-                           {"prelocalizations", trace.prelocalizations}};
+                           {"prelocalizations", trace.prelocalizations},
+                           {"undecided_prelocalizations", trace.undecided_prelocalizations},
+                           {"lock_corrections", trace.lock_corrections}};
   const auto& last = trace.estimates.back();
   result["localized"] = last.has_value();
   if (last) result["pose"] = {last->x, last->y, last->theta};

@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include "core/angles.h"
 #include "eval/reloc_benchmark.h"
@@ -21,18 +24,21 @@ using localization::LocalizationMethod;
 using localization::Localizer;
 using localization::LocalizerState;
 
+// A bundled world and the maps a perfect mapping run would make of it.
+void LoadWorldAndMaps(const std::string& name, sim::World** world_out,
+                      localization::LocalizerMap** map_out) {
+  Result<sim::World> world = sim::LoadWorld(fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / name);
+  ASSERT_TRUE(world.ok()) << world.status().message();
+  *world_out = new sim::World(std::move(*world));
+  const e2e::TruthMaps maps = e2e::MapsFromTruth(**world_out);
+  *map_out = new localization::LocalizerMap(
+      maps.occupancy, maps.semantic, localization::AmclOptions(),
+      localization::PreLocalizationOptions(), localization::ScanMatchRelocalizerOptions());
+}
+
 class LocalizerTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    const fs::path path = fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / "two_similar_rooms.yaml";
-    Result<sim::World> world = sim::LoadWorld(path);
-    ASSERT_TRUE(world.ok()) << world.status().message();
-    world_ = new sim::World(std::move(*world));
-    const e2e::TruthMaps maps = e2e::MapsFromTruth(*world_);
-    map_ = new localization::LocalizerMap(
-        maps.occupancy, maps.semantic, localization::AmclOptions(),
-        localization::PreLocalizationOptions(), localization::ScanMatchRelocalizerOptions());
-  }
+  static void SetUpTestSuite() { LoadWorldAndMaps("two_similar_rooms.yaml", &world_, &map_); }
   static void TearDownTestSuite() {
     delete map_;
     delete world_;
@@ -159,6 +165,78 @@ TEST_F(LocalizerTest, KidnappedRobotIsFoundAgainAfterGlobalRelocalization) {
   EXPECT_LE(ErrorM(*localizer.pose(), room_b.truth.back().pose), 0.25);
   EXPECT_LE(ErrorRad(*localizer.pose(), room_b.truth.back().pose), 0.1745);
   EXPECT_EQ(localizer.state(), LocalizerState::kTracking);
+}
+
+// The office floor's twelve offices share walls and furniture footprints; only the classes
+// differ, and two offices can share two of them. A robot in office S2 that has seen only objects
+// another office explains as well must keep both hypotheses and lock onto neither ("not sure
+// yet"); turning, it sees an object that only its own office explains, and locks there.
+class LookAlikeOfficesTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { LoadWorldAndMaps("office_floor.yaml", &world_, &map_); }
+  static void TearDownTestSuite() {
+    delete map_;
+    delete world_;
+  }
+
+  static sim::World* world_;
+  static localization::LocalizerMap* map_;
+};
+
+sim::World* LookAlikeOfficesTest::world_ = nullptr;
+localization::LocalizerMap* LookAlikeOfficesTest::map_ = nullptr;
+
+TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart) {
+  // A benchmark trial start (office_floor, seed 1, trial 6): the first objects in view are a
+  // pair that office S1, 6 m west, has in the same places.
+  const Pose2 start(17.18, 4.42, -2.16);
+  const fs::path work =
+      fs::temp_directory_path() / ("semchain_lookalike_offices_" + std::to_string(::getpid()));
+  eval::RelocBenchmarkOptions options;  // two turns in place, then up to 1 m ahead
+  Result<eval::RelocTrialRun> trial = eval::SimulateRelocTrial(*world_, start, 1007, options, work);
+  fs::remove_all(work);
+  ASSERT_TRUE(trial.ok()) << trial.status().message();
+  const eval::RelocRunInputs& inputs = trial->inputs;
+
+  Localizer localizer(*map_, LocalizationMethod::kSemanticScanMatch,
+                      localization::LocalizerOptions());
+  for (const eval::RelocFrame& frame : inputs.frames) {
+    localizer.AddFrame({frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image});
+  }
+  bool waited_on_look_alikes = false;
+  std::optional<std::size_t> first_lock;
+  Pose2 pose_at_lock;
+  for (std::size_t i = 0; i < inputs.scans.size(); ++i) {
+    localizer.AddScan(inputs.scans[i]);
+    if (localizer.state() == LocalizerState::kHypothesesPending) {
+      EXPECT_FALSE(first_lock.has_value()) << "undecided again after locking, scan " << i;
+      const auto& hypotheses = localizer.hypotheses();
+      // The hypotheses kept lie at different places, and the truth is among them.
+      ASSERT_GE(hypotheses.size(), 2u);
+      const auto near_truth = [&](const localization::PoseHypothesis& h) {
+        return (h.pose.translation() - trial->truth[i].pose.translation()).norm() < 0.5;
+      };
+      EXPECT_TRUE(std::any_of(hypotheses.begin(), hypotheses.end(), near_truth)) << "scan " << i;
+      EXPECT_FALSE(std::all_of(hypotheses.begin(), hypotheses.end(), near_truth)) << "scan " << i;
+      EXPECT_FALSE(localizer.pose().has_value());
+      waited_on_look_alikes = true;
+    }
+    if (!first_lock && localizer.state() == LocalizerState::kTracking) {
+      first_lock = i;
+      pose_at_lock = *localizer.pose();
+    }
+  }
+  EXPECT_TRUE(waited_on_look_alikes);
+  ASSERT_TRUE(first_lock.has_value());
+  EXPECT_GT(localizer.statistics().undecided_prelocalizations, 0);
+  // The first lock is already the right office, and it holds to the end.
+  EXPECT_LE((pose_at_lock.translation() - trial->truth[*first_lock].pose.translation()).norm(),
+            0.25);
+  ASSERT_TRUE(localizer.pose().has_value());
+  const Pose2 at_end = *localizer.pose();
+  EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
+  EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
+  EXPECT_EQ(localizer.statistics().lock_corrections, 0);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "bow/orb_features.h"
 #include "bow/run_features.h"
 #include "core/angles.h"
+#include "core/atomic_file.h"
 #include "core/rng.h"
 #include "eval/ate.h"
 #include "eval/reloc_methods.h"
@@ -21,7 +22,10 @@
 #include "io/detections_io.h"
 #include "io/rgbd_frame_io.h"
 #include "io/trajectory_io.h"
+#include "mapping/map_io.h"
 #include "mapping/slam_pipeline.h"
+#include "semantic/keyframes.h"
+#include "semantic/semantic_map_io.h"
 #include "semantic/semantic_run.h"
 #include "sim/scene.h"
 #include "sim/simulator.h"
@@ -112,6 +116,66 @@ Result<BuiltMap> BuildMap(const sim::World& world, const RelocBenchmarkOptions& 
   return built;
 }
 
+// RelocBenchmarkOptions::keep_runs: what the kept runs were made from. A folder whose
+// runs.json says something else is made anew.
+std::string RunsStamp(const std::string& world_text, const std::string& live_world_text,
+                      const RelocBenchmarkOptions& options) {
+  const nlohmann::json stamp = {
+      {"format", 1},
+      {"world", world_text},
+      {"live_world", live_world_text},
+      {"seed", options.seed},
+      {"start_clearance", options.start_clearance},
+      {"trial_turns", options.trial_turns},
+      {"trial_forward", options.trial_forward},
+      {"detections", options.detect ? options.detections_source : std::string("simulator")}};
+  return stamp.dump(2) + "\n";
+}
+
+// A trial's recording is complete when its trial.json names its start and seed.
+std::string TrialStamp(const Pose2& start, std::uint64_t seed) {
+  return nlohmann::json({{"start", {start.x, start.y, start.theta}}, {"seed", seed}}).dump() + "\n";
+}
+
+bool FileHolds(const fs::path& path, const std::string& text) {
+  const Result<std::string> held = ReadFile(path);
+  return held.ok() && *held == text;
+}
+
+// The mapping run's map as kept in RUN/map: map.yaml, semantic.json, keyframes.json, ate.json.
+Status WriteBuiltMap(const BuiltMap& built, const fs::path& run) {
+  const fs::path dir = run / "map";
+  SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(dir));
+  SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(dir / "map.yaml", built.occupancy));
+  SEMCHAIN_RETURN_IF_ERROR(semantic::WriteSemanticJson(dir / "semantic.json", built.semantic));
+  SEMCHAIN_RETURN_IF_ERROR(
+      semantic::WriteKeyframes(dir / "keyframes.json", {"..", built.keyframes}));
+  return WriteFileAtomically(dir / "ate.json",
+                             nlohmann::json({{"ate_rmse_m", built.ate}}).dump() + "\n");
+}
+
+Result<BuiltMap> ReadBuiltMap(const fs::path& run) {
+  const fs::path dir = run / "map";
+  BuiltMap built;
+  Result<mapping::MapImage> occupancy = mapping::ReadMap(dir / "map.yaml");
+  if (!occupancy.ok()) return occupancy.status();
+  built.occupancy = std::move(*occupancy);
+  Result<semantic::SemanticMap> map = semantic::ReadSemanticJson(dir / "semantic.json");
+  if (!map.ok()) return map.status();
+  built.semantic = std::move(*map);
+  Result<semantic::KeyframeDatabase> keyframes = semantic::ReadKeyframes(dir / "keyframes.json");
+  if (!keyframes.ok()) return keyframes.status();
+  built.keyframes = std::move(keyframes->keyframes);
+  Result<std::string> ate = ReadFile(dir / "ate.json");
+  if (!ate.ok()) return ate.status();
+  const nlohmann::json parsed = nlohmann::json::parse(*ate, nullptr, /*allow_exceptions=*/false);
+  if (!parsed.is_object() || !parsed.contains("ate_rmse_m") || !parsed["ate_rmse_m"].is_number()) {
+    return Status::Error((dir / "ate.json").string() + ": expected {\"ate_rmse_m\": number}");
+  }
+  built.ate = parsed["ate_rmse_m"].get<double>();
+  return built;
+}
+
 // The trial region must lie inside the walls' extent (the map can cover nothing else).
 Status CheckTrialRegionInWorld(const sim::World& world, const std::string& source) {
   if (world.trial_region.size() < 3) {
@@ -178,6 +242,11 @@ Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& s
   simulation.trial.rotation_radians = 2.0 * M_PI * options.trial_turns;
   simulation.trial.forward_distance_meters = options.trial_forward;
   SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(world, simulation, run));
+  return LoadRelocTrial(seed, options, run);
+}
+
+Result<RelocTrialRun> LoadRelocTrial(std::uint64_t seed, const RelocBenchmarkOptions& options,
+                                     const fs::path& run) {
   RelocTrialRun data;
   Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
   if (!log.ok()) return log.status();
@@ -334,23 +403,49 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
                                                  options.seed, live_world_path.string());
   if (!starts.ok()) return starts.status();
 
+  const bool keep = options.keep_runs;
+  if (keep && options.work_dir.empty()) {
+    return Status::Error("bench reloc: keeping the runs needs a folder for them");
+  }
   const fs::path work =
       options.work_dir.empty()
           ? fs::temp_directory_path() / ("semchain_bench_reloc_" + std::to_string(::getpid()))
           : options.work_dir;
   std::error_code ignored;
-  fs::remove_all(work, ignored);
-  fs::create_directories(work, ignored);
+  std::string stamp;
+  bool reuse = false;
+  if (keep) {
+    Result<std::string> world_text = ReadFile(world_path);
+    if (!world_text.ok()) return world_text.status();
+    Result<std::string> live_text = ReadFile(live_world_path);
+    if (!live_text.ok()) return live_text.status();
+    stamp = RunsStamp(*world_text, *live_text, options);
+    reuse = FileHolds(work / "runs.json", stamp);
+    if (!reuse && fs::exists(work) && !fs::is_empty(work, ignored) &&
+        !fs::exists(work / "runs.json")) {
+      // Never empty a folder that is not ours.
+      return Status::Error(work.string() +
+                           ": not empty and not a bench reloc runs folder (no runs.json)");
+    }
+  }
+  if (!reuse) fs::remove_all(work, ignored);
+  SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(work));
   struct Cleanup {
     fs::path path;
     ~Cleanup() {
       std::error_code error;
-      fs::remove_all(path, error);
+      if (!path.empty()) fs::remove_all(path, error);
     }
-  } cleanup{work};
+  } cleanup{keep ? fs::path() : work};
 
-  Result<BuiltMap> built = BuildMap(*world, options, work / "mapping");
+  Result<BuiltMap> built =
+      reuse ? ReadBuiltMap(work / "mapping") : BuildMap(*world, options, work / "mapping");
   if (!built.ok()) return built.status();
+  if (keep && !reuse) {
+    SEMCHAIN_RETURN_IF_ERROR(WriteBuiltMap(*built, work / "mapping"));
+    // Last: a folder interrupted before this is made anew.
+    SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(work / "runs.json", stamp));
+  }
   if (built->semantic.objects.empty()) {
     return Status::Error(world_path.string() + ": the mapping run found no objects");
   }
@@ -382,10 +477,18 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   result.map_ate_m = built->ate;
   for (int k = 0; k < options.trials; ++k) {
     const fs::path run = work / ("trial_" + std::to_string(k));
+    const Pose2& trial_start = (*starts)[static_cast<std::size_t>(k)];
+    const std::uint64_t trial_seed = options.seed + kTrialRunSeedOffset + k;
+    const std::string trial_stamp = TrialStamp(trial_start, trial_seed);
+    const bool kept_trial = keep && FileHolds(run / "trial.json", trial_stamp);
+    if (keep && !kept_trial) fs::remove_all(run, ignored);
     Result<RelocTrialRun> trial =
-        SimulateRelocTrial(*live, (*starts)[static_cast<std::size_t>(k)],
-                           options.seed + kTrialRunSeedOffset + k, options, run);
+        kept_trial ? LoadRelocTrial(trial_seed, options, run)
+                   : SimulateRelocTrial(*live, trial_start, trial_seed, options, run);
     if (!trial.ok()) return trial.status();
+    if (keep && !kept_trial) {
+      SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(run / "trial.json", trial_stamp));
+    }
     for (const std::string& method : options.methods) {
       const RelocTrace trace = RunRelocMethod(*localization::ParseLocalizationMethod(method), map,
                                               options.method, trial->inputs);
@@ -406,6 +509,8 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
       record.error_deg = outcome.final_error_rad * 180.0 / M_PI;
       record.prelocalizations = trace.prelocalizations;
       record.single_object_prelocalizations = trace.single_object_prelocalizations;
+      record.undecided_prelocalizations = trace.undecided_prelocalizations;
+      record.lock_corrections = trace.lock_corrections;
       if (outcome.prelocalized) {
         record.prelocalization_error =
             Eigen::Vector3d(outcome.prelocalization_error.x(), outcome.prelocalization_error.y(),
@@ -413,7 +518,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
       }
       result.runs[method].push_back(record);
     }
-    fs::remove_all(run, ignored);
+    if (!keep) fs::remove_all(run, ignored);
     if (progress) progress(k + 1, options.trials);
   }
   for (auto& [name, stats] : result.methods) Finish(&stats);
@@ -460,6 +565,8 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                       {"error_deg", r.error_deg},
                       {"prelocalizations", r.prelocalizations},
                       {"single_object_prelocalizations", r.single_object_prelocalizations},
+                      {"undecided_prelocalizations", r.undecided_prelocalizations},
+                      {"lock_corrections", r.lock_corrections},
                       {"prelocalization_error", prelocalization_error}});
     }
     runs[name] = list;

@@ -38,6 +38,11 @@ struct RelocBenchmarkOptions {
   localization::LocalizerOptions method;
   // Where the runs are made (removed afterwards); a temporary directory when empty.
   std::filesystem::path work_dir;
+  // Keep the runs in work_dir (the mapping run with its map in mapping/map/, each trial's
+  // recording in trial_K/), and reuse those an earlier call kept there for the same worlds,
+  // seed, trial settings and detections: methods can be compared again, and a failed trial
+  // replayed with `semchain localize`, without simulating anything anew.
+  bool keep_runs = false;
   // Detects the objects in a run's rendered frames (the mapping run's and every trial's), e.g.
   // an ONNX detector; empty: the simulator's detection model (RUN/detections.jsonl).
   std::function<Result<std::vector<FrameDetections>>(const std::filesystem::path& run)> detect;
@@ -83,6 +88,8 @@ struct RelocTrialRecord {
   double error_deg = 0.0;
   int prelocalizations = 0;
   int single_object_prelocalizations = 0;
+  int undecided_prelocalizations = 0;
+  int lock_corrections = 0;
   // |x|, |y| (m) and |θ| (deg) error of the first pre-localization, when there was one.
   std::optional<Eigen::Vector3d> prelocalization_error;
 };
@@ -109,6 +116,9 @@ struct RelocTrialRun {
 Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& start,
                                          std::uint64_t seed, const RelocBenchmarkOptions& options,
                                          const std::filesystem::path& run);
+// The same from a trial already simulated into 'run' (its log, detections, camera and truth).
+Result<RelocTrialRun> LoadRelocTrial(std::uint64_t seed, const RelocBenchmarkOptions& options,
+                                     const std::filesystem::path& run);
 
 // How one method did on one trial.
 struct RelocTrialOutcome {

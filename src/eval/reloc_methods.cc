@@ -94,6 +94,8 @@ RelocTrace RunRelocMethod(localization::LocalizationMethod method,
   trace.prelocalizations = statistics.prelocalizations;
   trace.single_object_prelocalizations = statistics.single_object_prelocalizations;
   trace.hidden_object_prelocalizations = statistics.hidden_object_prelocalizations;
+  trace.undecided_prelocalizations = statistics.undecided_prelocalizations;
+  trace.lock_corrections = statistics.lock_corrections;
   return trace;
 }
 

@@ -49,6 +49,8 @@ struct RelocTrace {
   int prelocalizations = 0;                // times pre-localization was run with ≥ 2 objects
   int single_object_prelocalizations = 0;  // ... with single-object hypotheses
   int hidden_object_prelocalizations = 0;  // ... from a hidden object's neighbours (BoW)
+  int undecided_prelocalizations = 0;      // ... leaving look-alike places (nothing locked)
+  int lock_corrections = 0;                // moves to a place explaining more objects
   // With RelocRunInputs::record_particles_every > 0, in time order: the first filter update,
   // the one at prelocalization_scan or the first after it, every n-th, and the last. Scan
   // matchers have no particles before they found the robot (AMCL tracks from there).

@@ -27,13 +27,6 @@ std::vector<PoseHypothesis> ToHypotheses(const std::vector<PoseCandidate>& candi
 // The covariance of a renewed prior, relative to the pre-localization's.
 constexpr double kRenewedPriorScale = 4.0;
 
-// Poses this far apart are different places, not a correction the filter makes by itself
-// (twice the benchmark's success tolerance).
-bool AnotherPlace(const Pose2& a, const Pose2& b) {
-  return (a.translation() - b.translation()).norm() > 0.5 ||
-         std::abs(NormalizeAngle(a.theta - b.theta)) > 0.35;
-}
-
 // Tracking covariance after a scan matcher found the robot.
 const Eigen::Matrix3d kTrackingCovariance =
     Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal();
@@ -178,6 +171,7 @@ void Localizer::RelocalizeGlobally() {
   estimate_.reset();
   filter_pose_.reset();
   seeded_ = false;
+  undecided_ = false;
   if (IsScanMatcherMethod(method_)) {
     ResetSearch();
   } else {
@@ -191,6 +185,7 @@ void Localizer::ResetSearch() {
   last_heading_ = 0.0;
   turned_ = 0.0;
   single_object_tried_ = false;
+  undecided_ = false;
 }
 
 Eigen::Matrix3d Localizer::covariance() const {
@@ -206,13 +201,15 @@ const std::vector<Particle>& Localizer::particles() const {
 
 LocalizerState Localizer::state() const {
   if (IsScanMatcherMethod(method_)) {
-    return tracking_ ? LocalizerState::kTracking : LocalizerState::kLost;
+    if (tracking_) return LocalizerState::kTracking;
+    return undecided_ ? LocalizerState::kHypothesesPending : LocalizerState::kLost;
   }
   if (!estimate_) return LocalizerState::kLost;
   // Localized as the failure detector sees it: the heaviest cluster holds 90 % of the weight
   // within convergence_distance (nav2's "every particle within it" is rarely met by 2000
-  // particles under nav2's odometry noise), and it has not collapsed since.
-  if (amcl_.failure_detector().armed() && !amcl_.FailureDetected()) {
+  // particles under nav2's odometry noise), and it has not collapsed since; and the objects
+  // seen do not leave a look-alike place as likely.
+  if (amcl_.failure_detector().armed() && !amcl_.FailureDetected() && !undecided_) {
     return LocalizerState::kTracking;
   }
   return seeded_ ? LocalizerState::kHypothesesPending : LocalizerState::kLost;
@@ -243,12 +240,29 @@ void Localizer::NoteHypotheses(const std::vector<PoseCandidate>& candidates, boo
   }
 }
 
+bool Localizer::NoteDecided(const std::vector<PoseCandidate>& candidates) {
+  undecided_ = !map_.prelocalizer.Decided(candidates);
+  if (undecided_) ++statistics_.undecided_prelocalizations;
+  return !undecided_;
+}
+
+bool Localizer::LockedOnLookAlike(const StampedScan& scan,
+                                  const std::vector<ObservedObject>& observed,
+                                  const std::vector<PoseCandidate>& candidates) const {
+  if (!filter_pose_ || candidates.empty()) return false;
+  // The filter's pose now (its last update moved on by odometry), as the objects were seen.
+  const Pose2 now = *filter_pose_ * filter_odometry_.Between(scan.odometry);
+  const PoseCandidate& best = candidates.front();
+  return map_.prelocalizer.DistinctPlaces(best.pose, now) &&
+         map_.prelocalizer.Agreeing(observed, now) + options_.relocate_margin <= best.agreeing;
+}
+
 // Remembers a frame's objects; returns what pre-localization may use now: nothing when the
 // frame shows no object (what is remembered gave its hypotheses when it was seen).
 std::vector<ObservedObject> Localizer::Observe(const StampedScan& scan,
                                                const LocalizerFrame& frame) {
   std::vector<ObservedObject> observed =
-      ObserveObjects(frame.detections, frame.camera, map_.prelocalizer.options().min_score);
+      ObserveObjects(frame.detections, frame.camera, map_.prelocalizer.options());
   if (!options_.observation_memory) return observed;
   memory_.Add(scan.odometry, observed);  // also when empty: it counts the turn
   if (observed.empty()) return observed;
@@ -328,9 +342,14 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
       candidates = PreLocalizeHidden(scan, *frame, observed);
     }
     if (!candidates.empty()) {
+      const bool decided = NoteDecided(candidates);
+      // A filter that converged on a look-alike place while the objects did not tell the
+      // places apart is moved once they do.
+      const bool relocate = seeded_ && decided && LockedOnLookAlike(scan, observed, candidates);
+      if (relocate) ++statistics_.lock_corrections;
       prior_ = ToHypotheses(candidates);
       prior_odometry_ = scan.odometry;
-      if (!seeded_ || amcl_.FailureDetected()) {
+      if (!seeded_ || amcl_.FailureDetected() || relocate) {
         amcl_.InitializeFromHypotheses(*prior_);
         filter_pose_.reset();
         seeded_ = true;
@@ -394,18 +413,25 @@ bool Localizer::RecheckLock(const StampedScan& scan, const LocalizerFrame& frame
   // Only poses explaining more than the tracked one are of interest: the others are dropped
   // before the laser rates them.
   const int explained = map_.prelocalizer.Agreeing(observed, *estimate_);
-  if (explained >= static_cast<int>(observed.size())) return false;  // none can explain more
-  const std::vector<PoseCandidate> candidates = PreLocalize(scan, observed, explained + 1);
+  if (explained + options_.relocate_margin > static_cast<int>(observed.size())) {
+    return false;  // none can explain enough more
+  }
+  const std::vector<PoseCandidate> candidates =
+      PreLocalize(scan, observed, explained + options_.relocate_margin);
   std::vector<PoseCandidate> better;
   for (const PoseCandidate& c : candidates) {
-    if (AnotherPlace(c.pose, *estimate_)) better.push_back(c);
+    if (map_.prelocalizer.DistinctPlaces(c.pose, *estimate_)) better.push_back(c);
   }
-  if (better.empty()) return false;
-  std::vector<PoseHypothesis> priors = ToHypotheses(better);
-  priors.insert(priors.begin(), {*estimate_, kTrackingCovariance, 1.0});
-  const RelocalizationResult result = map_.matcher.Relocalize(ScanPoints(scan), priors);
-  if (!result.success || result.hypothesis == 0) return false;
+  // Look-alikes among the places that explain more: the objects that tell them apart are still
+  // to come.
+  if (better.empty() || !map_.prelocalizer.Decided(better)) return false;
+  // The objects rule the tracked place out. The laser fits look-alike places alike (the tracked
+  // one, refined by tracking, often a little better), so it only has to confirm the new place.
+  const RelocalizationResult result =
+      map_.matcher.Relocalize(ScanPoints(scan), ToHypotheses(better));
+  if (!result.success) return false;
   StartTracking(scan.odometry, result.pose);
+  ++statistics_.lock_corrections;
   return true;
 }
 
@@ -434,6 +460,12 @@ std::optional<RelocalizationResult> Localizer::Relocalize(const StampedScan& sca
     candidates = PreLocalize(scan, observed);
   }
   const bool full_turn = FullTurn();
+  if (!candidates.empty() && !NoteDecided(candidates) && !full_turn) {
+    // Not sure yet: a look-alike place explains the objects seen as well; the turn goes on and
+    // shows more of them. After a full turn everything around has been seen, and the best match
+    // is taken (the lock re-check corrects it should later objects rule it out).
+    return std::nullopt;
+  }
   if (candidates.empty() && full_turn && options_.single_object && !single_object_tried_) {
     // Once: the circles give many windows, and a turn's objects are all remembered (also when
     // this scan has no frame or its frame shows nothing).
@@ -444,6 +476,11 @@ std::optional<RelocalizationResult> Localizer::Relocalize(const StampedScan& sca
     }
   }
   if (!candidates.empty()) {
+    // The laser fits look-alike places alike: it only chooses among the hypotheses that explain
+    // the most objects.
+    std::erase_if(candidates, [best = candidates.front().agreeing](const PoseCandidate& c) {
+      return c.agreeing < best;
+    });
     return map_.matcher.Relocalize(ScanPoints(scan), ToHypotheses(candidates));
   }
   // Without a semantic prior after a full turn (no two objects in view anywhere around), the

@@ -102,6 +102,11 @@ struct LocalizerOptions {
   // that explains more of the objects seen than the tracked one is searched beside it, and the
   // scan matcher's better match is kept (a look-alike pair can lock the robot in the wrong place).
   bool recheck_lock = true;
+  // A pose the method stands by (a scan matcher's lock, a converged filter) is moved to another
+  // place only when that place explains at least this many more of the objects seen during the
+  // turn: the laser fits look-alike places alike, and one object more can be a confused class
+  // or a partial view.
+  int relocate_margin = 2;
   // Seeds the filter's random stream.
   std::uint64_t seed = 1;
 };
@@ -118,7 +123,8 @@ struct LocalizerFrame {
 
 enum class LocalizerState {
   kLost,               // no pose the method stands by
-  kHypothesesPending,  // AMCL seeded by pre-localization, its particles not yet on one pose
+  kHypothesesPending,  // hypotheses kept, none locked: AMCL seeded by pre-localization whose
+                       // particles are not yet on one pose, or look-alike places not told apart
   kTracking,           // the robot found: a scan matcher's match or a converged filter
 };
 const char* LocalizerStateName(LocalizerState state);
@@ -132,6 +138,10 @@ struct LocalizerStatistics {
   int prelocalizations = 0;                    // pre-localizations with ≥ 2 objects
   int single_object_prelocalizations = 0;      // ... with single-object hypotheses
   int hidden_object_prelocalizations = 0;      // ... from a hidden object's neighbours (BoW)
+  // ... whose best hypothesis had a look-alike at another place (PreLocalizer::Decided): the
+  // method kept the hypotheses and locked onto none.
+  int undecided_prelocalizations = 0;
+  int lock_corrections = 0;  // tracked poses moved to a place that explains more objects
 };
 
 class Localizer {
@@ -186,6 +196,12 @@ class Localizer {
   int StepScanMatcher(const StampedScan& scan, const LocalizerFrame* frame);
   void StartTracking(const Pose2& odometry, const Pose2& pose);
   bool RecheckLock(const StampedScan& scan, const LocalizerFrame& frame);
+  // Notes whether 'candidates' decide between look-alike places; returns it.
+  bool NoteDecided(const std::vector<PoseCandidate>& candidates);
+  // semantic-amcl: whether the filter sits on a look-alike place that 'candidates' (decided)
+  // rule out: they put the robot elsewhere and explain more of the objects seen.
+  bool LockedOnLookAlike(const StampedScan& scan, const std::vector<ObservedObject>& observed,
+                         const std::vector<PoseCandidate>& candidates) const;
   void NoteTurn(const StampedScan& scan);
   bool FullTurn() const;
   std::optional<RelocalizationResult> Relocalize(const StampedScan& scan,
@@ -213,6 +229,8 @@ class Localizer {
   mutable std::optional<std::vector<Eigen::Vector2d>> scan_points_;
   ObservationMemory memory_;
   bool single_object_tried_ = false;
+  // The latest pre-localization left look-alike places (PreLocalizer::Decided).
+  bool undecided_ = false;
   // The latest pre-localization and the odometry when it was made.
   std::optional<std::vector<PoseHypothesis>> prior_;
   Pose2 prior_odometry_;

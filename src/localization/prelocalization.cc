@@ -62,15 +62,28 @@ bool PreLocalizationOptions::Validate(std::string* error) const {
     *error = "tolerances, standard deviations and max_hypotheses must be positive";
     return false;
   }
+  if (!(look_alike_laser_margin >= 0.0) || !(distinct_place_distance > 0.0) ||
+      !(distinct_place_heading > 0.0)) {
+    *error =
+        "look_alike_laser_margin must be >= 0, distinct_place_distance and "
+        "distinct_place_heading > 0";
+    return false;
+  }
   return true;
 }
 
 std::vector<ObservedObject> ObserveObjects(const std::vector<Detection>& detections,
-                                           const MountedCamera& camera, double min_score) {
+                                           const MountedCamera& camera,
+                                           const PreLocalizationOptions& options) {
   std::vector<ObservedObject> observed;
+  const double right = camera.intrinsics.width - options.border_margin_px;
   for (std::size_t i = 0; i < detections.size(); ++i) {
     const Detection& d = detections[i];
-    if (d.score < min_score || !(d.depth_m > 0.0)) continue;
+    if (d.score < options.min_score || !(d.depth_m > 0.0)) continue;
+    if (options.border_margin_px >= 0.0 &&
+        (d.box[0] <= options.border_margin_px || d.box[2] >= right)) {
+      continue;
+    }
     // Box edges are pixel boundaries; pixel u covers [u − 0.5, u + 0.5).
     const double u = 0.5 * (d.box[0] + d.box[2]) - 0.5;
     const double v = 0.5 * (d.box[1] + d.box[3]) - 0.5;
@@ -498,6 +511,21 @@ void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
       return c.laser_score < min_laser_score;
     });
   }
+}
+
+bool PreLocalizer::DistinctPlaces(const Pose2& a, const Pose2& b) const {
+  return (a.translation() - b.translation()).norm() > options_.distinct_place_distance ||
+         std::abs(NormalizeAngle(a.theta - b.theta)) > options_.distinct_place_heading;
+}
+
+bool PreLocalizer::Decided(const std::vector<PoseCandidate>& candidates) const {
+  if (candidates.empty()) return false;
+  const PoseCandidate& best = candidates.front();
+  return std::none_of(candidates.begin() + 1, candidates.end(), [&](const PoseCandidate& c) {
+    return c.agreeing >= best.agreeing &&
+           c.laser_score >= best.laser_score - options_.look_alike_laser_margin &&
+           DistinctPlaces(c.pose, best.pose);
+  });
 }
 
 std::vector<PoseCandidate> PreLocalizer::BestDistinct(std::vector<PoseCandidate> candidates) const {

@@ -52,6 +52,11 @@ struct PreLocalizationOptions {
   double heading_std = 0.08;
   // Detections scoring below this are not used.
   double min_score = 0.3;
+  // Detections whose box reaches within this many pixels of the image's left or right border
+  // are not used: the object is cut off there, so the box centre does not point at it and its
+  // depth belongs to whatever part is in view (a sofa beside the robot, seen a metre at a time
+  // as it turns, gives a surface point that wanders along it). < 0: all are used.
+  double border_margin_px = 1.0;
   // With a laser score given, hypotheses scoring below this are dropped: a confused or
   // spurious detection can explain a pair, the laser then says the place is wrong.
   double min_laser_score = 0.3;
@@ -65,6 +70,14 @@ struct PreLocalizationOptions {
   double single_object_step = 0.1;
   double single_object_min_laser_score = 0.3;
   int max_single_objects = 3;
+  // Look-alike places ("not sure yet"): when a hypothesis at another place explains as many of
+  // the objects seen as the best one and the laser fits it about as well (within this of the
+  // best's score), the pre-localization is undecided — the methods keep every hypothesis and
+  // lock onto none until more objects separate them (a turn shows them). Places are different
+  // when this far apart (metres, radians): twice the benchmark's success tolerance.
+  double look_alike_laser_margin = 0.1;
+  double distinct_place_distance = 0.5;
+  double distinct_place_heading = 0.35;
 
   bool Validate(std::string* error) const;
 };
@@ -80,9 +93,11 @@ struct ObservedObject {
   int frames_ago = 0;  // 0: the current frame (see ObservationMemory)
 };
 
-// The usable detections of a frame (score, depth) as observed objects.
+// The usable detections of a frame (score, depth, not cut off by the image's sides; see
+// PreLocalizationOptions) as observed objects.
 std::vector<ObservedObject> ObserveObjects(const std::vector<Detection>& detections,
-                                           const MountedCamera& camera, double min_score);
+                                           const MountedCamera& camera,
+                                           const PreLocalizationOptions& options);
 
 // A robot pose explaining what the frame shows.
 struct PoseCandidate {
@@ -137,6 +152,13 @@ class PreLocalizer {
   // How many of 'observed' a robot at 'pose' explains (a mapped object of the observed class
   // lies where the pose puts it, as for the hypotheses' agreement).
   int Agreeing(const std::vector<ObservedObject>& observed, const Pose2& pose) const;
+
+  // Whether the best of 'candidates' (ordered as Localize returns them) stands out: no
+  // hypothesis at a distinct place explains as many objects with a laser fit within
+  // look_alike_laser_margin of it. Empty candidates decide nothing.
+  bool Decided(const std::vector<PoseCandidate>& candidates) const;
+  // Whether 'a' and 'b' are different places (distinct_place_distance / _heading).
+  bool DistinctPlaces(const Pose2& a, const Pose2& b) const;
 
   const PreLocalizationOptions& options() const { return options_; }
 

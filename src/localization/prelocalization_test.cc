@@ -114,12 +114,17 @@ TEST(PreLocalizerTest, TwoObjectsGiveThePose) {
   for (const PoseCandidate& h : hypotheses) EXPECT_LT(h.pose.y, 5.0);
 }
 
-TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
-  // Two rooms with the same cabinet–bucket pair; only room B also has a chair.
+// Two rooms with the same cabinet–bucket pair; only room B also has a chair.
+semantic::SemanticMap LookAlikeRooms() {
   semantic::SemanticMap map;
   map.objects = {Square(0, "cabinet", 1.0, 5.0, 0.2), Square(1, "bucket", 2.5, 5.0, 0.15),
                  Square(2, "cabinet", 6.0, 5.0, 0.2), Square(3, "bucket", 7.5, 5.0, 0.15),
                  Square(4, "chair", 8.5, 3.5, 0.2)};
+  return map;
+}
+
+TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
+  const semantic::SemanticMap map = LookAlikeRooms();
   const PreLocalizer localizer(map, FreeRoom(), PreLocalizationOptions());
   const Pose2 truth(6.5, 2.5, M_PI / 2);
   std::vector<ObservedObject> pair = {See(truth, map.objects[2]), See(truth, map.objects[3])};
@@ -147,6 +152,77 @@ TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
   EXPECT_EQ(localizer.Agreeing(pair, truth), 3);
   EXPECT_EQ(localizer.Agreeing(pair, Pose2(truth.x - 5.0, truth.y, truth.theta)), 2);
   EXPECT_EQ(localizer.Agreeing(pair, Pose2(truth.x, truth.y, truth.theta + 1.0)), 0);
+}
+
+TEST(PreLocalizerTest, LookAlikePlacesLeaveItUndecidedUntilAnObjectTellsThemApart) {
+  // The pair alone fits room A and room B.
+  const semantic::SemanticMap map = LookAlikeRooms();
+  const PreLocalizer localizer(map, FreeRoom(), PreLocalizationOptions());
+  const Pose2 truth(6.5, 2.5, M_PI / 2);
+  std::vector<ObservedObject> seen = {See(truth, map.objects[2]), See(truth, map.objects[3])};
+  // A laser that fits both rooms alike (look-alike places) cannot decide...
+  const auto look_alike = [](const Pose2&) { return 0.8; };
+  const std::vector<PoseCandidate> pair = localizer.Localize(seen, look_alike);
+  ASSERT_GE(pair.size(), 2u);
+  EXPECT_FALSE(localizer.Decided(pair));
+  // ...one that fits room B by more than the margin can.
+  const auto fits_b = [&](const Pose2& pose) {
+    return (pose.translation() - truth.translation()).norm() < 0.5 ? 0.8 : 0.65;
+  };
+  const std::vector<PoseCandidate> by_laser = localizer.Localize(seen, fits_b);
+  ASSERT_FALSE(by_laser.empty());
+  EXPECT_LT((by_laser[0].pose.translation() - truth.translation()).norm(), 1e-4);
+  EXPECT_TRUE(localizer.Decided(by_laser));
+  // The chair, seen as the robot turns, explains room B only: decided, whatever the laser says.
+  seen.push_back(See(truth, map.objects[4]));
+  const std::vector<PoseCandidate> three = localizer.Localize(seen, look_alike);
+  ASSERT_GE(three.size(), 2u);
+  EXPECT_TRUE(localizer.Decided(three));
+  EXPECT_LT((three[0].pose.translation() - truth.translation()).norm(), 1e-4);
+  // Nothing decides nothing; hypotheses at one place are one place.
+  EXPECT_FALSE(localizer.Decided({}));
+  PoseCandidate here;
+  here.pose = truth;
+  here.agreeing = 2;
+  PoseCandidate beside = here;
+  beside.pose = Pose2(truth.x + 0.3, truth.y, truth.theta + 0.2);
+  EXPECT_TRUE(localizer.Decided({here, beside}));
+  beside.pose = Pose2(truth.x + 0.6, truth.y, truth.theta);
+  EXPECT_FALSE(localizer.Decided({here, beside}));
+  beside.pose = Pose2(truth.x, truth.y, truth.theta + 0.4);
+  EXPECT_FALSE(localizer.Decided({here, beside}));
+}
+
+TEST(ObserveObjectsTest, BoxesCutOffByTheImageSidesAreNotUsed) {
+  MountedCamera camera;
+  camera.intrinsics = PinholeCamera::FromFov(320, 240, 1.0);
+  // Optical axis along the robot's x (z forward, x right, y down).
+  Eigen::Matrix3d rotation;
+  rotation << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  camera.robot_from_camera.linear() = rotation;
+  const auto box = [](double x1, double x2) {
+    Detection d;
+    d.class_name = "sofa";
+    d.score = 0.9;
+    d.box[0] = x1, d.box[1] = 50.0, d.box[2] = x2, d.box[3] = 150.0;
+    d.depth_m = 2.0;
+    return d;
+  };
+  // Whole; touching the left side; touching the right side; 1.5 px in from the left.
+  const std::vector<Detection> detections = {box(100.0, 220.0), box(0.0, 90.0), box(230.0, 320.0),
+                                             box(1.5, 90.0)};
+  PreLocalizationOptions options;
+  std::vector<ObservedObject> observed = ObserveObjects(detections, camera, options);
+  ASSERT_EQ(observed.size(), 2u);
+  EXPECT_EQ(observed[0].detection, 0);
+  EXPECT_EQ(observed[1].detection, 3);
+  // The whole box: straight ahead at its depth.
+  EXPECT_NEAR(observed[0].surface.x(), 2.0, 1e-9);
+  EXPECT_NEAR(observed[0].bearing, 0.0, 1e-9);
+  options.border_margin_px = -1.0;  // all used
+  EXPECT_EQ(ObserveObjects(detections, camera, options).size(), 4u);
+  options.border_margin_px = 2.0;
+  EXPECT_EQ(ObserveObjects(detections, camera, options).size(), 1u);
 }
 
 TEST(PreLocalizerTest, SingleObjectCircleAndLaserGiveThePose) {

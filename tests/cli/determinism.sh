@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Determinism: the same seed gives byte-identical outputs of simulate, slam (at 1 and 2 threads),
-# semantic and bench reloc (its results without CPU readings).
+# semantic and bench reloc (its results without CPU readings, also with kept and reused runs).
 #   determinism.sh SEMCHAIN WORLD WORK_DIR
 set -euo pipefail
 semchain="$1"
@@ -48,3 +48,24 @@ if ! cmp -s reloc_a.json reloc_b.json; then
   exit 1
 fi
 echo "ok: bench reloc"
+
+# bench reloc --runs: kept runs give the results of temporary ones, and a second call reuses
+# them (nothing simulated again) with the same results.
+for run in c d; do
+  "$semchain" bench reloc --world "$world" --trials 3 --seed 4 \
+    --methods semantic-amcl,semantic-scanmatch --runs kept --out "reloc_$run" >/dev/null 2>&1
+  grep -v -E '"[a-z_]*cpu[a-z_]*_ms"' "reloc_$run/results.json" >"reloc_$run.json"
+  stat -c "%i %.9Y %n" kept/trial_0/log.clf kept/mapping/map/semantic.json >"kept_$run.stamps"
+done
+for run in c d; do
+  if ! cmp -s reloc_a.json "reloc_$run.json"; then
+    echo "FAIL: bench reloc --runs ($run) differs from the run without it"
+    diff reloc_a.json "reloc_$run.json" | head -20
+    exit 1
+  fi
+done
+if ! cmp -s kept_c.stamps kept_d.stamps; then
+  echo "FAIL: bench reloc --runs: the second call made the runs again"
+  exit 1
+fi
+echo "ok: bench reloc --runs"
