@@ -405,31 +405,37 @@ void Localizer::StartTracking(const Pose2& odometry, const Pose2& pose) {
 
 // A lock from a look-alike pair explains that pair; as the robot turns, the frames show objects
 // it cannot explain. When a frame's pre-localization finds poses, far from the tracked one, that
-// explain more of the objects seen, the scan matcher searches them beside the tracked pose and
-// the best match is kept. Returns whether the robot was moved.
+// explain more of the objects seen, the lock may move there: on the objects' word alone when the
+// new place explains relocate_margin more of them (the laser fits look-alike places alike, the
+// tracked one, refined by tracking, often a little better), and when it explains fewer more only
+// if the scan matcher, searching it beside the tracked pose, also fits it better. Returns whether
+// the robot was moved.
 bool Localizer::RecheckLock(const StampedScan& scan, const LocalizerFrame& frame) {
   const std::vector<ObservedObject> observed = Observe(scan, frame);
   if (observed.size() < 2) return false;
   // Only poses explaining more than the tracked one are of interest: the others are dropped
   // before the laser rates them.
   const int explained = map_.prelocalizer.Agreeing(observed, *estimate_);
-  if (explained + options_.relocate_margin > static_cast<int>(observed.size())) {
-    return false;  // none can explain enough more
-  }
-  const std::vector<PoseCandidate> candidates =
-      PreLocalize(scan, observed, explained + options_.relocate_margin);
+  if (explained >= static_cast<int>(observed.size())) return false;  // none can explain more
+  const std::vector<PoseCandidate> candidates = PreLocalize(scan, observed, explained + 1);
   std::vector<PoseCandidate> better;
   for (const PoseCandidate& c : candidates) {
     if (map_.prelocalizer.DistinctPlaces(c.pose, *estimate_)) better.push_back(c);
   }
-  // Look-alikes among the places that explain more: the objects that tell them apart are still
-  // to come.
-  if (better.empty() || !map_.prelocalizer.Decided(better)) return false;
-  // The objects rule the tracked place out. The laser fits look-alike places alike (the tracked
-  // one, refined by tracking, often a little better), so it only has to confirm the new place.
-  const RelocalizationResult result =
-      map_.matcher.Relocalize(ScanPoints(scan), ToHypotheses(better));
-  if (!result.success) return false;
+  if (better.empty()) return false;
+  RelocalizationResult result;
+  if (better.front().agreeing >= explained + options_.relocate_margin) {
+    // Look-alikes among the places that explain more: the objects that tell them apart are
+    // still to come.
+    if (!map_.prelocalizer.Decided(better)) return false;
+    result = map_.matcher.Relocalize(ScanPoints(scan), ToHypotheses(better));
+    if (!result.success) return false;
+  } else {
+    std::vector<PoseHypothesis> priors = ToHypotheses(better);
+    priors.insert(priors.begin(), {*estimate_, kTrackingCovariance, 1.0});
+    result = map_.matcher.Relocalize(ScanPoints(scan), priors);
+    if (!result.success || result.hypothesis == 0) return false;
+  }
   StartTracking(scan.odometry, result.pose);
   ++statistics_.lock_corrections;
   return true;

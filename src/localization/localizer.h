@@ -103,9 +103,10 @@ struct LocalizerOptions {
   // scan matcher's better match is kept (a look-alike pair can lock the robot in the wrong place).
   bool recheck_lock = true;
   // A pose the method stands by (a scan matcher's lock, a converged filter) is moved to another
-  // place only when that place explains at least this many more of the objects seen during the
-  // turn: the laser fits look-alike places alike, and one object more can be a confused class
-  // or a partial view.
+  // place on the objects' word alone when that place explains at least this many more of the
+  // objects seen during the turn (the laser fits look-alike places alike, and one object more
+  // can be a confused class or a partial view); a lock moves for fewer only when the laser also
+  // fits the other place better.
   int relocate_margin = 2;
   // Seeds the filter's random stream.
   std::uint64_t seed = 1;
