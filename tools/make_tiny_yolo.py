@@ -12,6 +12,8 @@ channel, 0 on the others) with hand-set weights, and report their boxes exactly:
                              the class scores (after sigmoid)
   unflattened_head.onnx      a broken export for the error tests: the stride-8 raw head alone,
                              not flattened (1 x 67 x H/8 x W/8)
+  tiny_squares_attention.onnx  tiny_squares_raw with an unused MatMul of two computed tensors
+                             (OpenCV 4.6's FLOPs count reads weights such a MatMul does not have)
 
 with N anchors of the strides 8, 16 and 32, row-major per stride, anchor centres at
 ((i + 0.5) * stride, (j + 0.5) * stride), as ultralytics YOLOv8 lays them out. Every op is one
@@ -254,12 +256,25 @@ def decoded_boxes(g, ltrb, anchors, s):
     return g.conv(features, w, None, "xywh")
 
 
-def build(decoded, width=640, height=640, unflattened=False):
+def attention_product(g, m, channels):
+    """A MatMul of two computed tensors, as attention blocks (Gold-YOLO's High-IFM) have:
+    (1 x C x 1) @ (1 x 1 x C) of the masks' channel means. Its result feeds nothing, so the boxes
+    stay those of the model without it."""
+    pooled = g.op("GlobalAveragePool", [m], "attention_pool")
+    column = g.op("Reshape", [pooled, g.const("column", [1, channels, 1], np.int64)], "attention_q")
+    row = g.op("Reshape", [pooled, g.const("row", [1, 1, channels], np.int64)], "attention_k")
+    return g.op("MatMul", [column, row], "attention")
+
+
+def build(decoded, width=640, height=640, unflattened=False, attention=False):
     """The test model; 'unflattened' gives a broken export instead: the stride-8 head alone,
-    1 x (64 + nc) x H/8 x W/8, to test that the detector rejects an output of the wrong shape."""
+    1 x (64 + nc) x H/8 x W/8, to test that the detector rejects an output of the wrong shape;
+    'attention' adds attention_product beside it."""
     g = Graph()
     nc = len(CLASSES)
     m, channels = masks(g, "images", decoded)
+    if attention:
+        attention_product(g, m, channels)
     heads = []
     for s in STRIDES[:1] if unflattened else STRIDES:
         ltrb, inside, anchors = stride_features(g, m, channels, s, decoded)
@@ -304,6 +319,9 @@ def main():
         print(f"wrote {path} ({os.path.getsize(path)} bytes)")
     path = os.path.join(out_dir, "unflattened_head.onnx")
     onnx.save(build(False, unflattened=True), path)
+    print(f"wrote {path} ({os.path.getsize(path)} bytes)")
+    path = os.path.join(out_dir, "tiny_squares_attention.onnx")
+    onnx.save(build(False, attention=True), path)
     print(f"wrote {path} ({os.path.getsize(path)} bytes)")
 
 

@@ -1,6 +1,7 @@
 #include "detection/yolo_detector.h"
 
 #include <algorithm>
+#include <opencv2/dnn/shape_utils.hpp>
 #include <optional>
 #include <regex>
 #include <system_error>
@@ -145,12 +146,28 @@ Result<cv::Mat> YoloDetector::Forward(const cv::Mat& input_rgb) {
 YoloDetector::Cost YoloDetector::ModelCost() {
   Cost cost;
   const cv::dnn::MatShape input = {1, 3, options_.input_height, options_.input_width};
-  cost.gflops = static_cast<double>(net_.getFLOPS(input)) * 1e-9;
+  std::int64_t flops = 0;
   for (const std::string& name : net_.getLayerNames()) {
-    for (const cv::Mat& blob : net_.getLayer(net_.getLayerId(name))->blobs) {
+    const int id = net_.getLayerId(name);
+    const cv::Ptr<cv::dnn::Layer> layer = net_.getLayer(id);
+    for (const cv::Mat& blob : layer->blobs) {
       cost.parameters += static_cast<std::int64_t>(blob.total());
     }
+    if (layer->type == "InnerProduct" && layer->blobs.empty()) {
+      // A MatMul of two computed tensors (attention). OpenCV 4.6 counts an InnerProduct's FLOPs
+      // from its weights' shape, which this one does not have (it would read past an empty
+      // vector and crash): 2·K multiply-adds per output value, K the shared dimension.
+      std::vector<cv::dnn::MatShape> in, out;
+      net_.getLayerShapes(input, id, in, out);
+      if (!in.empty() && !in[0].empty() && !out.empty()) {
+        flops += 2 * static_cast<std::int64_t>(in[0].back()) *
+                 static_cast<std::int64_t>(cv::dnn::total(out[0]));
+      }
+      continue;
+    }
+    flops += net_.getFLOPS(id, input);
   }
+  cost.gflops = static_cast<double>(flops) * 1e-9;
   return cost;
 }
 

@@ -111,6 +111,37 @@ TEST(YoloDetectorTest, ThresholdFiltersByScore) {
   EXPECT_TRUE(found->empty());
 }
 
+// OpenCV 4.6's own count of a graph's FLOPs crashes on a MatMul of two computed tensors (Gold-
+// YOLO's attention has two): the cost counts it as 2·K·(output values) and the rest as OpenCV does.
+TEST(YoloDetectorTest, CostCountsAMatMulOfComputedTensors) {
+  Result<std::unique_ptr<YoloDetector>> plain =
+      YoloDetector::Load(TestModel("tiny_squares_raw.onnx"), SquareClasses(), YoloOptions());
+  Result<std::unique_ptr<YoloDetector>> attention =
+      YoloDetector::Load(TestModel("tiny_squares_attention.onnx"), SquareClasses(), YoloOptions());
+  ASSERT_TRUE(plain.ok()) << plain.status().message();
+  ASSERT_TRUE(attention.ok()) << attention.status().message();
+  const YoloDetector::Cost without = (*plain)->ModelCost();
+  const YoloDetector::Cost with = (*attention)->ModelCost();
+  EXPECT_GT(without.gflops, 0.0);
+  EXPECT_EQ(with.parameters, without.parameters);  // the branch has no weights
+  // The branch: the masks' channel means (a sum over 640 × 640 pixels for each of their C = 4
+  // channels: three classes and their union) and their outer product, (4 × 1) @ (1 × 4): K = 1,
+  // 16 values, 32 operations.
+  const double added = (with.gflops - without.gflops) * 1e9;
+  EXPECT_GE(added, 4.0 * 640 * 640 + 32.0 - 1.0);
+  EXPECT_LE(added, 2.0 * (4.0 * 640 * 640) + 32.0);
+  // And the branch feeds nothing: the same boxes.
+  const cv::Mat image = SquareImage(SceneSquares());
+  Result<std::vector<Detection>> a = (*plain)->Detect(image);
+  Result<std::vector<Detection>> b = (*attention)->Detect(image);
+  ASSERT_TRUE(a.ok() && b.ok());
+  ASSERT_EQ(a->size(), b->size());
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    EXPECT_EQ((*a)[i].class_id, (*b)[i].class_id);
+    for (int k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ((*a)[i].box[k], (*b)[i].box[k]);
+  }
+}
+
 TEST(YoloDetectorTest, RejectsAnImageThatIsNotRgb) {
   Result<std::unique_ptr<YoloDetector>> detector =
       YoloDetector::Load(TestModel("tiny_squares_raw.onnx"), SquareClasses(), YoloOptions());

@@ -132,7 +132,9 @@ def load_model_and_names(weights: Path) -> tuple[nn.Module, list[str]]:
 
 
 def check_with_opencv(model: nn.Module, path: Path, input_size: tuple[int, int], seed: int = 0) -> float:
-    """Max |OpenCV DNN - PyTorch| on a random input; raises when OpenCV cannot load or run the file."""
+    """Max |OpenCV DNN - PyTorch| on a random input, relative to the largest output magnitude (at
+    least 1): trained logits reach ~10-15, and OpenCV's float32 attention and pooling round
+    differently from PyTorch's by a few 1e-4 of that. Raises when OpenCV cannot load or run it."""
     import cv2
     import numpy as np
 
@@ -148,18 +150,26 @@ def check_with_opencv(model: nn.Module, path: Path, input_size: tuple[int, int],
     got = net.forward()
     if got.shape != expected.shape:
         raise ValueError(f"{path}: OpenCV DNN output {got.shape}, PyTorch {expected.shape}")
-    return float(np.abs(got - expected).max())
+    return float(np.abs(got - expected).max() / max(1.0, float(np.abs(expected).max())))
 
 
 def run(args: argparse.Namespace) -> int:
     input_size = args.input
     model, names = load_model_and_names(args.weights)
-    export_onnx(model, args.out, input_size)
+    # Checked before it replaces anything: a model OpenCV runs differently never lands at --out.
+    staged = args.out.with_name(args.out.name + ".staged.onnx")
+    try:
+        export_onnx(model, staged, input_size)
+        if not args.no_check:
+            diff = check_with_opencv(model, staged, input_size)
+            print(f"OpenCV DNN runs it: max |OpenCV - PyTorch| = {diff:.2e} of the largest output")
+            if diff > 1e-3:
+                raise ValueError(
+                    f"{args.out}: OpenCV DNN output differs from PyTorch by {diff:.3g} of the largest output (> 1e-3)"
+                )
+        os.replace(staged, args.out)
+    finally:
+        staged.unlink(missing_ok=True)
     write_names(args.out.with_suffix(".names"), names)
     print(f"wrote {args.out} (1x{4 * 16 + len(names)}xN raw head, input {input_size[0]}x{input_size[1]}) and {args.out.with_suffix('.names')}")
-    if not args.no_check:
-        diff = check_with_opencv(model, args.out, input_size)
-        print(f"OpenCV DNN runs it: max |OpenCV - PyTorch| = {diff:.2e}")
-        if diff > 1e-3:
-            raise ValueError(f"{args.out}: OpenCV DNN output differs from PyTorch by {diff:.3g} (> 1e-3)")
     return 0

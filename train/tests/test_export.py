@@ -58,3 +58,24 @@ def test_bad_input_size_is_refused():
     for text in ("320", "320x250", "0x256", "axb"):
         with pytest.raises(ValueError, match="--input"):
             parse_size(text)
+
+
+def test_an_export_opencv_runs_differently_replaces_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    import argparse
+
+    import semchain_train.export as export
+
+    model = random_detector(False, False, seed=10)
+    monkeypatch.setattr(export, "load_model_and_names", lambda weights: (model, ["a", "b", "c", "d", "e", "f", "g", "h", "i", "j"]))
+    out = tmp_path / "m.onnx"
+    out.write_bytes(b"the previous export")
+    args = argparse.Namespace(weights=tmp_path / "w.pt", out=out, input=SIZE, no_check=False)
+    monkeypatch.setattr(export, "check_with_opencv", lambda *a, **k: 0.01)
+    with pytest.raises(ValueError, match="differs from PyTorch by 0.01 of the largest output"):
+        export.run(args)
+    assert out.read_bytes() == b"the previous export"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.onnx"]
+    monkeypatch.setattr(export, "check_with_opencv", lambda *a, **k: 1e-5)
+    assert export.run(args) == 0
+    assert onnx.load(str(out)).opset_import[0].version == OPSET
+    assert (tmp_path / "m.names").read_text().splitlines()[0] == "a"
