@@ -72,7 +72,9 @@ CeresMatchResult RefineWithCeres(const MatchGrid& grid, const std::vector<Eigen:
   if (points.empty()) return result;
   const OccupiedSpaceCost cost(grid, points, options.occupied_space_weight);
   const CorrectionCost correction_cost(cost, initial);
-  ceres::TinySolver<CorrectionCost> solver;
+  // Value-initialized: TinySolver leaves cost_ unset until Solve sets it, which GCC cannot always
+  // see (-Wmaybe-uninitialized, depending on what is inlined beside it).
+  ceres::TinySolver<CorrectionCost> solver{};
   // TinySolver counts the evaluation at the start as an iteration.
   solver.options.max_num_iterations = options.max_num_iterations + 1;
   solver.options.parameter_tolerance = options.step_tolerance;
