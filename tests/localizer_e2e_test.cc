@@ -10,10 +10,16 @@
 #include <optional>
 #include <string>
 
+#include "bow/keyframe_recognizer.h"
+#include "bow/run_features.h"
 #include "core/angles.h"
 #include "eval/reloc_benchmark.h"
+#include "io/trajectory_io.h"
 #include "localization/localizer.h"
+#include "semantic/semantic_run.h"
+#include "sim/simulator.h"
 #include "sim/world.h"
+#include "sim/world_io.h"
 #include "testing/truth_maps.h"
 
 namespace semchain {
@@ -264,6 +270,104 @@ TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRule
   EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
   EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
   EXPECT_EQ(localizer.state(), LocalizerState::kTracking);
+}
+
+// Seed 000 Table 5's case, where only a hidden object tells two places apart: occluded_corridor's
+// two bays both show a stool and a bucket 2 m apart with the same hall around them, and differ
+// in the object between them (a cabinet in bay 1, a chair in bay 2). The map is made of the
+// unchanged world (semantic mapping of its mapping run on the true trajectory and occupancy);
+// the trials run in occluded_corridor_changed, where a column hides bay 1's cabinet. The bag of
+// words names the cabinet hidden and its chain neighbours place the robot in bay 1, where the
+// pair alone leaves both bays (and the laser picks either: semantic-amcl on these trials ends in
+// bay 2 in the first, checked when this test was written).
+class HiddenObjectTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = new fs::path(fs::temp_directory_path() /
+                         ("semchain_hidden_object_" + std::to_string(::getpid())));
+    fs::remove_all(*root_);
+    LoadWorldAndMaps("occluded_corridor.yaml", &world_, &map_);
+    Result<sim::World> changed =
+        sim::LoadWorld(fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / "occluded_corridor_changed.yaml");
+    ASSERT_TRUE(changed.ok()) << changed.status().message();
+    changed_ = new sim::World(std::move(*changed));
+    const fs::path run = *root_ / "mapping";
+    sim::SimulationOptions simulation;
+    simulation.seed = 1;
+    simulation.show_progress = false;
+    ASSERT_TRUE(sim::Simulate(*world_, simulation, run).ok());
+    Result<std::vector<StampedPose>> truth = ReadTrajectory(run / "truth.txt");
+    ASSERT_TRUE(truth.ok());
+    semantic::SemanticRunInputs inputs;
+    inputs.run_dir = run;
+    inputs.occupancy = map_->occupancy;
+    inputs.trajectory = std::move(*truth);
+    Result<semantic::SemanticMappingResult> mapped =
+        semantic::MapRun(inputs, semantic::SemanticMapOptions());
+    ASSERT_TRUE(mapped.ok()) << mapped.status().message();
+    Result<std::vector<fs::path>> images = bow::ListColorFrames(run);
+    ASSERT_TRUE(images.ok());
+    Result<std::vector<cv::Mat>> descriptors =
+        bow::ExtractImageDescriptors(*images, bow::OrbOptions());
+    ASSERT_TRUE(descriptors.ok());
+    bow::VocabularyOptions vocabulary_options;
+    vocabulary_options.seed = 1;
+    Result<bow::Vocabulary> vocabulary = bow::Vocabulary::Train(*descriptors, vocabulary_options);
+    ASSERT_TRUE(vocabulary.ok());
+    Result<bow::KeyframeRecognizer> recognizer = bow::KeyframeRecognizer::Build(
+        std::move(*vocabulary), semantic::KeyframeDatabase{run.string(), mapped->keyframes},
+        bow::KeyframeRecognizerOptions(), run);
+    ASSERT_TRUE(recognizer.ok()) << recognizer.status().message();
+    const mapping::MapImage occupancy = map_->occupancy;
+    delete map_;
+    map_ = new localization::LocalizerMap(occupancy, mapped->map, localization::AmclOptions(),
+                                          localization::PreLocalizationOptions(),
+                                          localization::ScanMatchRelocalizerOptions());
+    map_->recognizer = std::make_shared<const bow::KeyframeRecognizer>(std::move(*recognizer));
+  }
+  static void TearDownTestSuite() {
+    if (root_ != nullptr) fs::remove_all(*root_);
+    delete root_;
+    delete map_;
+    delete changed_;
+    delete world_;
+  }
+
+  static fs::path* root_;
+  static sim::World* world_;
+  static sim::World* changed_;
+  static localization::LocalizerMap* map_;
+};
+
+fs::path* HiddenObjectTest::root_ = nullptr;
+sim::World* HiddenObjectTest::world_ = nullptr;
+sim::World* HiddenObjectTest::changed_ = nullptr;
+localization::LocalizerMap* HiddenObjectTest::map_ = nullptr;
+
+TEST_F(HiddenObjectTest, TheHiddenCabinetPlacesTheRobotInItsBay) {
+  ASSERT_NE(map_->recognizer, nullptr);
+  const std::vector<Pose2> starts = {Pose2(10.0, 1.3, 1.2), Pose2(9.6, 1.7, -2.0),
+                                     Pose2(10.4, 1.0, 0.4)};
+  for (std::size_t t = 0; t < starts.size(); ++t) {
+    SCOPED_TRACE("trial " + std::to_string(t));
+    const fs::path work = *root_ / ("trial_" + std::to_string(t));
+    eval::RelocBenchmarkOptions options;  // two turns in place, then up to 1 m ahead
+    Result<eval::RelocTrialRun> trial =
+        eval::SimulateRelocTrial(*changed_, starts[t], 2000 + t, options, work);
+    ASSERT_TRUE(trial.ok()) << trial.status().message();
+    const eval::RelocRunInputs& inputs = trial->inputs;
+    Localizer localizer(*map_, LocalizationMethod::kSemanticAmclBow,
+                        localization::LocalizerOptions());
+    for (const eval::RelocFrame& frame : inputs.frames) {
+      localizer.AddFrame({frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image});
+    }
+    for (const StampedScan& scan : inputs.scans) localizer.AddScan(scan);
+    EXPECT_GT(localizer.statistics().hidden_object_prelocalizations, 0);
+    ASSERT_TRUE(localizer.pose().has_value());
+    const Pose2 at_end = *localizer.pose();
+    EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
+    EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
+  }
 }
 
 }  // namespace

@@ -141,17 +141,23 @@ TEST(WorldsTest, LowObstaclesHideBFromTheLidar) {
   EXPECT_NEAR(past_a.ranges[ahead], 6.0 - 3.2, 1e-9);  // B is invisible: the wall at x = 6
 }
 
-// Seed 000 §4.2: the changed world keeps the original's objects (so a map of one serves the
-// other) and adds the white column next to the bucket.
-TEST(WorldsTest, ChangedRoomsKeepTheObjectsAndHideTheBucket) {
-  const World original = Load("two_similar_rooms");
-  const World changed = Load("two_similar_rooms_changed");
+// A changed world keeps the original's objects (so a map of one serves the other): the same
+// classes in the same places, rendered alike.
+void ExpectSameObjects(const World& original, const World& changed) {
   ASSERT_EQ(original.objects.size(), changed.objects.size());
   for (std::size_t i = 0; i < original.objects.size(); ++i) {
     EXPECT_EQ(original.objects[i].class_name, changed.objects[i].class_name);
     EXPECT_EQ(original.objects[i].footprint.center, changed.objects[i].footprint.center);
     EXPECT_EQ(original.objects[i].texture_seed, changed.objects[i].texture_seed);
   }
+}
+
+// Seed 000 §4.2: the changed world keeps the original's objects (so a map of one serves the
+// other) and adds the white column next to the bucket.
+TEST(WorldsTest, ChangedRoomsKeepTheObjectsAndHideTheBucket) {
+  const World original = Load("two_similar_rooms");
+  const World changed = Load("two_similar_rooms_changed");
+  ExpectSameObjects(original, changed);
   EXPECT_NE(original.walls[0], changed.walls[0]);  // the moved wall section
   ASSERT_EQ(changed.obstacles.size(), 1u);
   const Solid& column = changed.obstacles[0];
@@ -167,6 +173,54 @@ TEST(WorldsTest, ChangedRoomsKeepTheObjectsAndHideTheBucket) {
   ASSERT_FALSE(hits.empty());
   EXPECT_EQ(hits.front().surface.kind, SurfaceRef::Kind::kObstacle);
   EXPECT_GT(column.height, changed.robot.camera.height);
+}
+
+// The bag-of-words world pair: the changed hall adds one column, which hides bay 1's cabinet
+// from every corner of the trial region while stool and bucket stay in sight; bay 2 is bay 1
+// turned half about the hall's centre with a chair in the cabinet's place.
+TEST(WorldsTest, OccludedCorridorHidesTheCabinetBetweenLookAlikePairs) {
+  const World original = Load("occluded_corridor");
+  const World changed = Load("occluded_corridor_changed");
+  ExpectSameObjects(original, changed);
+  EXPECT_TRUE(original.obstacles.empty());
+  ASSERT_EQ(changed.obstacles.size(), 1u);
+  EXPECT_GT(changed.obstacles[0].height, changed.robot.camera.height);
+  auto find = [&](const std::string& name, bool north) {
+    for (std::size_t i = 0; i < changed.objects.size(); ++i) {
+      const Solid& s = changed.objects[i];
+      if (s.class_name == name && (s.footprint.center.y() > 3.0) == north)
+        return static_cast<int>(i);
+    }
+    return -1;
+  };
+  const int cabinet = find("cabinet", true), stool = find("stool", true),
+            bucket = find("bucket", true);
+  ASSERT_GE(cabinet, 0);
+  ASSERT_GE(stool, 0);
+  ASSERT_GE(bucket, 0);
+  // Bay 2: bay 1 turned half about (20, 3), the chair where the cabinet is.
+  const Eigen::Vector2d centre(20.0, 3.0);
+  for (const auto& [bay_1_object, bay_2_class] : std::vector<std::pair<int, std::string>>{
+           {stool, "stool"}, {cabinet, "chair"}, {bucket, "bucket"}}) {
+    const int image = find(bay_2_class, false);
+    ASSERT_GE(image, 0) << bay_2_class;
+    const Eigen::Vector2d turned = 2.0 * centre - changed.objects[bay_1_object].footprint.center;
+    EXPECT_LT((changed.objects[image].footprint.center - turned).norm(), 0.12) << bay_2_class;
+  }
+  const Scene scene(changed);
+  auto first_hit = [&](const Eigen::Vector2d& from, int object) {
+    const Eigen::Vector2d to = changed.objects[object].footprint.center - from;
+    const auto hits = scene.CastAll(from, std::atan2(to.y(), to.x()), 20.0);
+    return hits.empty() ? SurfaceRef{} : hits.front().surface;
+  };
+  for (const Eigen::Vector2d& corner : changed.trial_region) {
+    EXPECT_EQ(first_hit(corner, cabinet).kind, SurfaceRef::Kind::kObstacle);
+    for (const int seen : {stool, bucket}) {
+      const SurfaceRef hit = first_hit(corner, seen);
+      EXPECT_EQ(hit.kind, SurfaceRef::Kind::kObject);
+      EXPECT_EQ(hit.index, seen);
+    }
+  }
 }
 
 }  // namespace

@@ -5,7 +5,13 @@
 namespace semchain::bow {
 namespace {
 
-// The node of 'id' with its neighbours when both neighbours' classes are seen now.
+// Chain neighbours farther apart than this are never in one camera frame, so they cannot be the
+// pair seen now around a hidden object (a chain wraps from one end of a hall to the other; the
+// pre-localizer pairs nothing farther apart either).
+constexpr double kMaxNeighboursDistance = 15.0;
+
+// The node of 'id' with its neighbours when both neighbours' classes are seen now and the two
+// could be in view together.
 bool Fits(const semantic::SemanticMap& map, int id, const std::vector<std::string>& classes,
           const std::vector<int>& current, OccludedObject* object) {
   semantic::ChainNeighbours neighbours;
@@ -14,6 +20,7 @@ bool Fits(const semantic::SemanticMap& map, int id, const std::vector<std::strin
   const semantic::SemanticObject* up = map.Find(neighbours.upstream);
   const semantic::SemanticObject* down = map.Find(neighbours.downstream);
   if (self == nullptr || up == nullptr || down == nullptr || up == down) return false;
+  if ((up->center - down->center).norm() > kMaxNeighboursDistance) return false;
   std::vector<int> needed(classes.size(), 0);
   for (const semantic::SemanticObject* o : {up, down}) {
     const auto it = std::find(classes.begin(), classes.end(), o->class_name);
@@ -145,18 +152,25 @@ RankedOcclusionInference InferOccludedObjects(const semantic::SemanticMap& map,
   }
   const std::vector<std::string> classes = CountVectorClasses(map);
   const std::vector<int> current = CountClasses(detections, classes);
-  result.used = 0;
+  // The first covering keyframe whose inference names a hidden object; else the first covering
+  // one (its inference says why it fails); else the most similar.
+  int first_covering = -1;
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     const std::vector<int> difference = ClassDifference(CountClasses(*ranked[i], classes), current);
     const bool covers =
         std::all_of(difference.begin(), difference.end(), [](int d) { return d >= 0; });
     const bool more =
         std::any_of(difference.begin(), difference.end(), [](int d) { return d > 0; });
-    if (covers && more) {
+    if (!covers || !more) continue;
+    OcclusionInference inference = InferOccludedObjects(map, *ranked[i], detections);
+    if (!inference.occluded.empty()) {
       result.used = static_cast<int>(i);
-      break;
+      result.inference = std::move(inference);
+      return result;
     }
+    if (first_covering < 0) first_covering = static_cast<int>(i);
   }
+  result.used = std::max(first_covering, 0);
   result.inference = InferOccludedObjects(map, *ranked[result.used], detections);
   return result;
 }

@@ -52,7 +52,8 @@ struct OcclusionInference {
 // Step 4 for the current frame's 'detections' and its best 'keyframe'. For each class the
 // keyframe has more of, the candidates are first the keyframe's objects of that class, and
 // when none of them fits every chain node of that class in 'map'; a candidate fits when the
-// classes of both its chain neighbours (from 'map') are among the current detections. A class
+// classes of both its chain neighbours (from 'map') are among the current detections and the
+// neighbours are close enough (15 m) to be in one frame. A class
 // is decided when no more candidates fit than the keyframe has extra objects of it.
 OcclusionInference InferOccludedObjects(const semantic::SemanticMap& map,
                                         const semantic::Keyframe& keyframe,
@@ -65,8 +66,9 @@ struct RankedOcclusionInference {
 
 // Step 4 over the bag-of-words ranking 'ranked' (most similar first): the keyframe used is the
 // first that shows every object class seen now at least as often and some class more often
-// (step 2: a keyframe should cover the hidden object with its up- and downstream neighbours);
-// when none does, the most similar one (whose inference then says why it fails).
+// (step 2: a keyframe should cover the hidden object with its up- and downstream neighbours)
+// and whose inference names a hidden object; when none names one, the first such covering
+// keyframe, and when none covers, the most similar one (whose inference then says why it fails).
 RankedOcclusionInference InferOccludedObjects(const semantic::SemanticMap& map,
                                               const std::vector<const semantic::Keyframe*>& ranked,
                                               const std::vector<Detection>& detections);

@@ -149,6 +149,52 @@ TEST(OcclusionInferenceTest, RankedUsesTheFirstKeyframeCoveringTheCurrentClasses
   EXPECT_EQ(InferOccludedObjects(map, std::vector<const semantic::Keyframe*>{}, now).used, -1);
 }
 
+// A chain wraps from one end of a hall to the other: the west door between a bucket 20 m east
+// and a stool at the west wall has both neighbours' classes in view, but the two are never in
+// one frame, so the door is no candidate; the bay's cabinet between the same classes 2 m apart is.
+semantic::SemanticMap Hall() {
+  semantic::SemanticMap map;
+  map.classes = DefaultClassNames();
+  map.objects = {Object(1, "door", 0, 3), Object(2, "stool", 9, 5.8), Object(3, "cabinet", 10, 5.8),
+                 Object(4, "bucket", 11, 5.8), Object(5, "bucket", 29, 0.2)};
+  map.chains = {semantic::MakeChain(0, {5, 1, 2, 3, 4}, map.objects)};  // 4 links back to 5
+  return map;
+}
+
+TEST(OcclusionInferenceTest, NeighboursTooFarApartForOneFrameDoNotFit) {
+  const semantic::SemanticMap map = Hall();
+  const std::vector<Detection> now = {Seen("stool"), Seen("bucket")};
+  semantic::Keyframe west_end;  // a keyframe at the west door
+  west_end.objects = {InView(1, "door"), InView(2, "stool"), InView(5, "bucket")};
+  const OcclusionInference door = InferOccludedObjects(map, west_end, now);
+  EXPECT_TRUE(door.occluded.empty());
+  EXPECT_NE(door.reason.find("door: no chain node"), std::string::npos) << door.reason;
+  semantic::Keyframe bay;
+  bay.objects = {InView(2, "stool"), InView(3, "cabinet"), InView(4, "bucket")};
+  const OcclusionInference cabinet = InferOccludedObjects(map, bay, now);
+  ASSERT_EQ(cabinet.occluded.size(), 1u) << cabinet.reason;
+  EXPECT_EQ(cabinet.occluded[0].id, 3);
+  EXPECT_NEAR(cabinet.occluded[0].neighbours_distance, 2.0, 1e-12);
+}
+
+TEST(OcclusionInferenceTest, RankedPassesOverACoveringKeyframeThatNamesNothing) {
+  const semantic::SemanticMap map = Hall();
+  const std::vector<Detection> now = {Seen("stool"), Seen("bucket")};
+  semantic::Keyframe west_end;  // more similar, covers the classes seen now, names nothing
+  west_end.objects = {InView(1, "door"), InView(2, "stool"), InView(5, "bucket")};
+  semantic::Keyframe bay;
+  bay.objects = {InView(2, "stool"), InView(3, "cabinet"), InView(4, "bucket")};
+  const RankedOcclusionInference result = InferOccludedObjects(map, {&west_end, &bay}, now);
+  EXPECT_EQ(result.used, 1);
+  ASSERT_EQ(result.inference.occluded.size(), 1u);
+  EXPECT_EQ(result.inference.occluded[0].id, 3);
+  // Alone, the covering keyframe that names nothing is used, and says why.
+  const RankedOcclusionInference alone = InferOccludedObjects(map, {&west_end}, now);
+  EXPECT_EQ(alone.used, 0);
+  EXPECT_TRUE(alone.inference.occluded.empty());
+  EXPECT_FALSE(alone.inference.reason.empty());
+}
+
 TEST(OcclusionInferenceTest, NothingMissingSaysSo) {
   const semantic::SemanticMap map = TwoRooms();
   semantic::Keyframe keyframe;

@@ -271,12 +271,12 @@ std::vector<ObservedObject> Localizer::Observe(const StampedScan& scan,
 
 std::vector<PoseCandidate> Localizer::PreLocalize(const StampedScan& scan,
                                                   const std::vector<ObservedObject>& observed,
-                                                  int min_agreeing) {
+                                                  int min_agreeing, bool note) {
   if (observed.size() < 2) return {};
   std::vector<PoseCandidate> candidates =
       map_.prelocalizer.Localize(observed, LaserScorer(scan), nullptr, min_agreeing);
   ++statistics_.prelocalizations;
-  NoteHypotheses(candidates, true);
+  if (note) NoteHypotheses(candidates, true);
   return candidates;
 }
 
@@ -337,9 +337,20 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
   // odometry (the robot turns between frames, the prior's heading must follow).
   if (frame) {
     const std::vector<ObservedObject> observed = Observe(scan, *frame);
-    std::vector<PoseCandidate> candidates = PreLocalize(scan, observed);
-    if (candidates.empty() && method_ == LocalizationMethod::kSemanticAmclBow) {
-      candidates = PreLocalizeHidden(scan, *frame, observed);
+    const bool bow = method_ == LocalizationMethod::kSemanticAmclBow;
+    std::vector<PoseCandidate> candidates = PreLocalize(scan, observed, 0, !bow);
+    if (bow) {
+      // Seed 000 §3.1 step 3: where the objects in view do not place the robot — no mapped pair
+      // among them, or look-alike places that explain them alike (an object that would tell
+      // the places apart hidden) — the object the bag of words names hidden decides. Its
+      // neighbours' pair is taken whenever it explains as many of the objects seen: it explains
+      // the hidden one too, which the laser's preference between look-alike places does not.
+      std::vector<PoseCandidate> hidden = PreLocalizeHidden(scan, *frame, observed);
+      if (!hidden.empty() &&
+          (candidates.empty() || hidden.front().agreeing >= candidates.front().agreeing)) {
+        candidates = std::move(hidden);
+      }
+      NoteHypotheses(candidates, true);
     }
     if (!candidates.empty()) {
       const bool decided = NoteDecided(candidates);

@@ -185,9 +185,11 @@ class Localizer {
   std::function<double(const Pose2&)> LaserScorer(const StampedScan& scan) const;
   void NoteHypotheses(const std::vector<PoseCandidate>& candidates, bool first_counts);
   std::vector<ObservedObject> Observe(const StampedScan& scan, const LocalizerFrame& frame);
+  // 'note': the hypotheses count as the method's (pre-localization error, hypotheses()); false
+  // when the caller may still replace them.
   std::vector<PoseCandidate> PreLocalize(const StampedScan& scan,
                                          const std::vector<ObservedObject>& observed,
-                                         int min_agreeing = 0);
+                                         int min_agreeing = 0, bool note = true);
   std::vector<PoseCandidate> PreLocalizeSingle(const StampedScan& scan,
                                                const std::vector<ObservedObject>& observed);
   std::vector<PoseCandidate> PreLocalizeHidden(const StampedScan& scan, const LocalizerFrame& frame,
