@@ -42,6 +42,22 @@ void LoadWorldAndMaps(const std::string& name, sim::World** world_out,
       localization::PreLocalizationOptions(), localization::ScanMatchRelocalizerOptions());
 }
 
+// Frame i of a trial as the Localizer takes it (its colour image by path, for the bag of words).
+localization::LocalizerFrame TrialFrame(const eval::RelocRunInputs& inputs, std::size_t i) {
+  const eval::RelocFrame& frame = inputs.frames[i];
+  return {frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image};
+}
+
+void AddFrames(const eval::RelocRunInputs& inputs, Localizer* localizer) {
+  for (std::size_t i = 0; i < inputs.frames.size(); ++i) localizer->AddFrame(TrialFrame(inputs, i));
+}
+
+// A whole trial: its frames (each waits for its scan), then its scans.
+void FeedTrial(const eval::RelocRunInputs& inputs, Localizer* localizer) {
+  AddFrames(inputs, localizer);
+  for (const StampedScan& scan : inputs.scans) localizer->AddScan(scan);
+}
+
 class LocalizerTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { LoadWorldAndMaps("two_similar_rooms.yaml", &world_, &map_); }
@@ -62,11 +78,6 @@ class LocalizerTest : public ::testing::Test {
     fs::remove_all(work);
     EXPECT_TRUE(trial.ok()) << trial.status().message();
     return trial.ok() ? std::move(*trial) : eval::RelocTrialRun();
-  }
-
-  static localization::LocalizerFrame Frame(const eval::RelocRunInputs& inputs, std::size_t i) {
-    const eval::RelocFrame& frame = inputs.frames[i];
-    return {frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image};
   }
 
   static double ErrorM(const Pose2& a, const Pose2& b) {
@@ -114,7 +125,7 @@ TEST_F(LocalizerTest, FrameWaitsForItsScan) {
   while (f < inputs.frames.size() && inputs.frames[f].detections.size() < 2) ++f;
   ASSERT_LT(f, inputs.frames.size());
   Localizer localizer(*map_, LocalizationMethod::kSemanticAmcl, localization::LocalizerOptions());
-  localizer.AddFrame(Frame(inputs, f));
+  localizer.AddFrame(TrialFrame(inputs, f));
   for (const StampedScan& scan : inputs.scans) {
     localizer.AddScan(scan);
     if (scan.scan.timestamp + 1e-6 < inputs.frames[f].stamp) {
@@ -139,10 +150,7 @@ TEST_F(LocalizerTest, KidnappedRobotIsFoundAgainAfterGlobalRelocalization) {
   ASSERT_FALSE(room_b.inputs.scans.empty());
   Localizer localizer(*map_, LocalizationMethod::kSemanticScanMatch,
                       localization::LocalizerOptions());
-  for (std::size_t i = 0; i < room_a.inputs.frames.size(); ++i) {
-    localizer.AddFrame(Frame(room_a.inputs, i));
-  }
-  for (const StampedScan& scan : room_a.inputs.scans) localizer.AddScan(scan);
+  FeedTrial(room_a.inputs, &localizer);
   ASSERT_TRUE(localizer.pose().has_value());
   EXPECT_LE(ErrorM(*localizer.pose(), room_a.truth.back().pose), 0.25);
   EXPECT_EQ(localizer.state(), LocalizerState::kTracking);
@@ -157,7 +165,7 @@ TEST_F(LocalizerTest, KidnappedRobotIsFoundAgainAfterGlobalRelocalization) {
   const Pose2 rebase = last_a.odometry * first_b.odometry.Inverse();
   const double shift = last_a.scan.timestamp + 0.1 - first_b.scan.timestamp;
   for (std::size_t i = 0; i < room_b.inputs.frames.size(); ++i) {
-    localization::LocalizerFrame frame = Frame(room_b.inputs, i);
+    localization::LocalizerFrame frame = TrialFrame(room_b.inputs, i);
     frame.stamp += shift;
     localizer.AddFrame(std::move(frame));
   }
@@ -206,9 +214,7 @@ TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart)
 
   Localizer localizer(*map_, LocalizationMethod::kSemanticScanMatch,
                       localization::LocalizerOptions());
-  for (const eval::RelocFrame& frame : inputs.frames) {
-    localizer.AddFrame({frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image});
-  }
+  AddFrames(inputs, &localizer);
   bool waited_on_look_alikes = false;
   std::optional<std::size_t> first_lock;
   Pose2 pose_at_lock;
@@ -260,10 +266,7 @@ TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRule
   ASSERT_TRUE(trial.ok()) << trial.status().message();
   const eval::RelocRunInputs& inputs = trial->inputs;
   Localizer localizer(*map_, LocalizationMethod::kSemanticAmcl, localization::LocalizerOptions());
-  for (const eval::RelocFrame& frame : inputs.frames) {
-    localizer.AddFrame({frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image});
-  }
-  for (const StampedScan& scan : inputs.scans) localizer.AddScan(scan);
+  FeedTrial(inputs, &localizer);
   EXPECT_GE(localizer.statistics().lock_corrections, 1);
   ASSERT_TRUE(localizer.pose().has_value());
   const Pose2 at_end = *localizer.pose();
@@ -286,7 +289,10 @@ class HiddenObjectTest : public ::testing::Test {
     root_ = new fs::path(fs::temp_directory_path() /
                          ("semchain_hidden_object_" + std::to_string(::getpid())));
     fs::remove_all(*root_);
-    LoadWorldAndMaps("occluded_corridor.yaml", &world_, &map_);
+    Result<sim::World> world =
+        sim::LoadWorld(fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / "occluded_corridor.yaml");
+    ASSERT_TRUE(world.ok()) << world.status().message();
+    world_ = new sim::World(std::move(*world));
     Result<sim::World> changed =
         sim::LoadWorld(fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / "occluded_corridor_changed.yaml");
     ASSERT_TRUE(changed.ok()) << changed.status().message();
@@ -300,7 +306,8 @@ class HiddenObjectTest : public ::testing::Test {
     ASSERT_TRUE(truth.ok());
     semantic::SemanticRunInputs inputs;
     inputs.run_dir = run;
-    inputs.occupancy = map_->occupancy;
+    const mapping::MapImage occupancy = e2e::MapsFromTruth(*world_).occupancy;
+    inputs.occupancy = occupancy;
     inputs.trajectory = std::move(*truth);
     Result<semantic::SemanticMappingResult> mapped =
         semantic::MapRun(inputs, semantic::SemanticMapOptions());
@@ -318,8 +325,6 @@ class HiddenObjectTest : public ::testing::Test {
         std::move(*vocabulary), semantic::KeyframeDatabase{run.string(), mapped->keyframes},
         bow::KeyframeRecognizerOptions(), run);
     ASSERT_TRUE(recognizer.ok()) << recognizer.status().message();
-    const mapping::MapImage occupancy = map_->occupancy;
-    delete map_;
     map_ = new localization::LocalizerMap(occupancy, mapped->map, localization::AmclOptions(),
                                           localization::PreLocalizationOptions(),
                                           localization::ScanMatchRelocalizerOptions());
@@ -355,13 +360,9 @@ TEST_F(HiddenObjectTest, TheHiddenCabinetPlacesTheRobotInItsBay) {
     Result<eval::RelocTrialRun> trial =
         eval::SimulateRelocTrial(*changed_, starts[t], 2000 + t, options, work);
     ASSERT_TRUE(trial.ok()) << trial.status().message();
-    const eval::RelocRunInputs& inputs = trial->inputs;
     Localizer localizer(*map_, LocalizationMethod::kSemanticAmclBow,
                         localization::LocalizerOptions());
-    for (const eval::RelocFrame& frame : inputs.frames) {
-      localizer.AddFrame({frame.stamp, frame.detections, inputs.camera, cv::Mat(), frame.image});
-    }
-    for (const StampedScan& scan : inputs.scans) localizer.AddScan(scan);
+    FeedTrial(trial->inputs, &localizer);
     EXPECT_GT(localizer.statistics().hidden_object_prelocalizations, 0);
     ASSERT_TRUE(localizer.pose().has_value());
     const Pose2 at_end = *localizer.pose();

@@ -154,7 +154,6 @@ RankedOcclusionInference InferOccludedObjects(const semantic::SemanticMap& map,
   const std::vector<int> current = CountClasses(detections, classes);
   // The first covering keyframe whose inference names a hidden object; else the first covering
   // one (its inference says why it fails); else the most similar.
-  int first_covering = -1;
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     const std::vector<int> difference = ClassDifference(CountClasses(*ranked[i], classes), current);
     const bool covers =
@@ -163,15 +162,17 @@ RankedOcclusionInference InferOccludedObjects(const semantic::SemanticMap& map,
         std::any_of(difference.begin(), difference.end(), [](int d) { return d > 0; });
     if (!covers || !more) continue;
     OcclusionInference inference = InferOccludedObjects(map, *ranked[i], detections);
-    if (!inference.occluded.empty()) {
+    const bool first_covering = result.used < 0;
+    if (first_covering || !inference.occluded.empty()) {
       result.used = static_cast<int>(i);
       result.inference = std::move(inference);
-      return result;
     }
-    if (first_covering < 0) first_covering = static_cast<int>(i);
+    if (!result.inference.occluded.empty()) return result;
   }
-  result.used = std::max(first_covering, 0);
-  result.inference = InferOccludedObjects(map, *ranked[result.used], detections);
+  if (result.used < 0) {
+    result.used = 0;
+    result.inference = InferOccludedObjects(map, *ranked[0], detections);
+  }
   return result;
 }
 

@@ -296,7 +296,9 @@ std::vector<PoseCandidate> Localizer::PreLocalizeSingle(
 std::vector<PoseCandidate> Localizer::PreLocalizeHidden(
     const StampedScan& scan, const LocalizerFrame& frame,
     const std::vector<ObservedObject>& observed) {
-  if (!map_.recognizer || frame.detections.empty()) return {};
+  // The hidden object's two chain neighbours must both be in view: a frame with fewer than two
+  // detections cannot name one, so its image is not described.
+  if (!map_.recognizer || frame.detections.size() < 2) return {};
   cv::Mat image = frame.color;
   if (image.empty()) {
     if (frame.color_path.empty()) return {};
@@ -313,7 +315,6 @@ std::vector<PoseCandidate> Localizer::PreLocalizeHidden(
   std::vector<PoseCandidate> candidates =
       map_.prelocalizer.Localize(observed, LaserScorer(scan), &neighbours);
   ++statistics_.hidden_object_prelocalizations;
-  NoteHypotheses(candidates, true);
   return candidates;
 }
 

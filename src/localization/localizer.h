@@ -192,6 +192,8 @@ class Localizer {
                                          int min_agreeing = 0, bool note = true);
   std::vector<PoseCandidate> PreLocalizeSingle(const StampedScan& scan,
                                                const std::vector<ObservedObject>& observed);
+  // Hypotheses from the neighbours of the object the bag of words names hidden; not noted (the
+  // caller decides whether they replace the pair hypotheses).
   std::vector<PoseCandidate> PreLocalizeHidden(const StampedScan& scan, const LocalizerFrame& frame,
                                                const std::vector<ObservedObject>& observed);
   int Step(const StampedScan& scan, const LocalizerFrame* frame);
