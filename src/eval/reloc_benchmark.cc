@@ -221,8 +221,11 @@ Result<std::vector<Pose2>> TrialPoses(const sim::World& world, int count, double
       return Status::Error(source + ": trial_region: no free pose " + std::to_string(clearance) +
                            " m from every surface found in it");
     }
-    const Eigen::Vector2d p =
-        low + (high - low).cwiseProduct(Eigen::Vector2d(unit(rng), unit(rng)));
+    // y before x, one statement each: a constructor's arguments are evaluated in an unspecified
+    // order (GCC last to first, as the published trials were drawn; clang first to last).
+    const double y_draw = unit(rng);
+    const double x_draw = unit(rng);
+    const Eigen::Vector2d p = low + (high - low).cwiseProduct(Eigen::Vector2d(x_draw, y_draw));
     if (!sim::PolygonContains(world.trial_region, p) || scene.IsOccupied(p, clearance)) continue;
     poses.emplace_back(p.x(), p.y(), NormalizeAngle(2.0 * M_PI * unit(rng)));
   }

@@ -43,8 +43,10 @@ SimulatedRun RoomLoop(std::uint64_t seed = 1) {
   for (const Pose2& pose : route) {
     if (!run.truth.empty()) {
       const Pose2 motion = run.truth.back().Between(pose);
-      odometry = odometry * Pose2(motion.x * 1.03 + 0.002 * noise(rng), motion.y,
-                                  motion.theta * 0.98 + 0.002 * noise(rng));
+      const double theta_noise = 0.002 * noise(rng);  // θ first: GCC's argument order
+      const double x_noise = 0.002 * noise(rng);
+      odometry =
+          odometry * Pose2(motion.x * 1.03 + x_noise, motion.y, motion.theta * 0.98 + theta_noise);
     }
     LaserScan scan = mapping::testing::SimulateScan(world, pose);
     for (double& r : scan.ranges) r += 0.01 * noise(rng);

@@ -56,9 +56,12 @@ Pose2 Crossover(const GeneticResamplingOptions& options, const Pose2& high, cons
 
 Pose2 Mutate(const GeneticResamplingOptions& options, const Pose2& pose, Rng& rng) {
   std::normal_distribution<double> normal;
-  return Pose2(pose.x + options.mutation_sigma_meters * normal(rng),
-               pose.y + options.mutation_sigma_meters * normal(rng),
-               pose.theta + options.mutation_sigma_radians * normal(rng));
+  // θ, y, x, one statement each: a constructor's arguments are evaluated in an unspecified order
+  // (GCC last to first, as the published ablation was run; clang first to last).
+  const double theta = pose.theta + options.mutation_sigma_radians * normal(rng);
+  const double y = pose.y + options.mutation_sigma_meters * normal(rng);
+  const double x = pose.x + options.mutation_sigma_meters * normal(rng);
+  return Pose2(x, y, theta);
 }
 
 }  // namespace

@@ -43,9 +43,13 @@ PerturbedLog PerturbOdometry(const carmen::Log& log, const OdometryPerturbationO
       const double sigma_theta =
           options.rotation_per_meter * distance + options.rotation_per_radian * turn;
       const double scale = 1.0 + options.distance_scale_error;
-      odometry = odometry *
-                 Pose2(d.x * scale + sigma_xy * normal(rng), d.y * scale + sigma_xy * normal(rng),
-                       d.theta * (1.0 + options.turn_scale_error) + sigma_theta * normal(rng));
+      // θ, y, x, one statement each: a constructor's arguments are evaluated in an unspecified
+      // order (GCC last to first, as the published figures were made; clang first to last).
+      const double theta_noise = sigma_theta * normal(rng);
+      const double y_noise = sigma_xy * normal(rng);
+      const double x_noise = sigma_xy * normal(rng);
+      odometry = odometry * Pose2(d.x * scale + x_noise, d.y * scale + y_noise,
+                                  d.theta * (1.0 + options.turn_scale_error) + theta_noise);
     }
     previous_truth = truth;
     result.truth.push_back({scan.scan.timestamp, truth});

@@ -65,9 +65,11 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
   evaluate(evaluation.mode);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int j = 0; j < options.samples; ++j) {
-    evaluate(Pose2(evaluation.mode.x + window_xy * unit(rng),
-                   evaluation.mode.y + window_xy * unit(rng),
-                   evaluation.mode.theta + window_theta * unit(rng)));
+    // θ, y, x, one statement each (unspecified argument order; GCC's, as in SampleGaussian).
+    const double theta = evaluation.mode.theta + window_theta * unit(rng);
+    const double y = evaluation.mode.y + window_xy * unit(rng);
+    const double x = evaluation.mode.x + window_xy * unit(rng);
+    evaluate(Pose2(x, y, theta));
   }
   return evaluation;
 }
@@ -115,7 +117,12 @@ GaussianFit FitProposal(const ProposalEvaluation& evaluation, double observation
 Pose2 SampleGaussian(const GaussianFit& fit, Rng& rng) {
   const Eigen::Matrix3d lower = fit.covariance.llt().matrixL();
   std::normal_distribution<double> normal;
-  const Eigen::Vector3d z(normal(rng), normal(rng), normal(rng));
+  // Last to first, one statement each (see localization::SamplePose): the same draws with GCC,
+  // which evaluated the constructor's arguments in that order, and with clang.
+  const double z_theta = normal(rng);
+  const double z_y = normal(rng);
+  const double z_x = normal(rng);
+  const Eigen::Vector3d z(z_x, z_y, z_theta);
   const Eigen::Vector3d x = fit.mean + lower * z;
   return Pose2(x.x(), x.y(), x.z());
 }

@@ -122,8 +122,12 @@ inline SimulatedRun SimulateRoomRun(double step = 0.1, double range_noise = 0.01
         odometry = pose;
       } else {
         const Pose2 motion = run.truth.back().Between(pose);
-        odometry = odometry * Pose2(motion.x * 1.03 + 0.002 * noise(rng), motion.y,
-                                    motion.theta * 0.98 + 0.002 * noise(rng));
+        // θ before x, one statement each: argument order is unspecified (GCC's, last to
+        // first, made the fixtures that use this run).
+        const double theta_noise = 0.002 * noise(rng);
+        const double x_noise = 0.002 * noise(rng);
+        odometry = odometry *
+                   Pose2(motion.x * 1.03 + x_noise, motion.y, motion.theta * 0.98 + theta_noise);
       }
       LaserScan scan = SimulateScan(world, pose);
       for (double& r : scan.ranges) r += range_noise * noise(rng);
