@@ -6,6 +6,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <vector>
@@ -50,7 +51,10 @@ Result<std::vector<Event>> MakeEvents(const RunContents& run, std::int64_t offse
     SEMCHAIN_RETURN_IF_ERROR(add(run.frames[i].stamp, Event::Kind::kFrame, i));
   }
   std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
-    return a.time != b.time ? a.time < b.time : a.kind < b.kind;
+    // By the stamps' nanoseconds: ros::Time's operator!= is ambiguous in C++20 under clang (its
+    // == may also be used reversed), which the fuzz build compiles this with.
+    const std::uint64_t ta = a.time.toNSec(), tb = b.time.toNSec();
+    return ta != tb ? ta < tb : a.kind < b.kind;
   });
   return events;
 }

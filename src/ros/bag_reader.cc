@@ -2,6 +2,8 @@
 
 #include <system_error>
 
+#include "ros/bag_structure.h"
+
 namespace semchain::ros1 {
 namespace fs = std::filesystem;
 
@@ -9,6 +11,8 @@ Result<std::unique_ptr<BagReader>> BagReader::Open(const fs::path& path) {
   std::error_code ignored;
   if (!fs::is_regular_file(path, ignored))
     return Status::Error(path.string() + ": no such bag file");
+  // rosbag follows the lengths and offsets it reads without comparing them with the file.
+  SEMCHAIN_RETURN_IF_ERROR(CheckBagStructure(path));
   std::unique_ptr<BagReader> reader(new BagReader(path));
   try {
     reader->bag_.open(path.string(), rosbag::bagmode::Read);

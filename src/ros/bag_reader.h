@@ -1,10 +1,12 @@
 #pragma once
 
 #include <ros/message_traits.h>
+#include <ros/serialization.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <functional>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "core/status.h"
+#include "ros/message_bounds.h"
 
 // Reads a ROS bag topic by topic, turning rosbag's exceptions into one-line errors that name
 // the bag, and the topic and message where one is to blame.
@@ -86,9 +89,17 @@ Status BagReader::ForEach(const std::vector<std::string>& topics,
       const std::string& topic = instance.getTopic();
       const std::string where =
           path_.string() + ": " + topic + " message " + std::to_string(++counts[topic]);
-      const boost::shared_ptr<Message> msg = instance.instantiate<Message>();
-      if (msg == nullptr) return Status::Error(where + ": not a " + instance.getDataType());
-      SEMCHAIN_RETURN_IF_ERROR(visit(*msg, BagMessage{topic, where}));
+      // The bytes are checked against the type before roscpp reads them: its serializer sizes
+      // an array by the length it reads, before it knows the bytes are there.
+      std::vector<std::uint8_t> bytes(instance.size());
+      ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+      instance.write(out);
+      const Status fits = LayoutOf<Message>().Check(bytes.data(), bytes.size());
+      if (!fits.ok()) return Status::Error(where + ": " + fits.message());
+      Message msg;
+      ros::serialization::IStream in(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+      ros::serialization::deserialize(in, msg);
+      SEMCHAIN_RETURN_IF_ERROR(visit(msg, BagMessage{topic, where}));
       if (on_message_) on_message_();
     }
   } catch (const std::exception& error) {
