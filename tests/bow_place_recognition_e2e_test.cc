@@ -303,7 +303,9 @@ TEST_F(BowEndToEndTest, OccludedBucketInTheChangedWorld) {
     runs[r].show_progress = false;
     if (r == 0) continue;
     runs[r].route.kind = sim::RouteSpec::Kind::kTrial;
-    runs[r].start = Pose2(x(rng), y(rng), theta(rng));
+    // One draw a statement, θ first: argument order is unspecified (GCC's, last to first).
+    const double start_theta = theta(rng), start_y = y(rng), start_x = x(rng);
+    runs[r].start = Pose2(start_x, start_y, start_theta);
   }
   constexpr int kRanked = 5;  // bag-of-words matches the inference may choose from
   int frames = 0, named = 0, correct = 0;

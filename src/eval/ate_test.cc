@@ -19,7 +19,9 @@ std::vector<StampedPose> RandomWalk(int n, std::uint64_t seed) {
   Pose2 pose;
   for (int i = 0; i < n; ++i) {
     poses.push_back({0.1 * i, pose});
-    pose = pose * Pose2(0.1 + std::abs(step(rng)), step(rng), step(rng));
+    // One draw a statement, θ first: argument order is unspecified (GCC's, last to first).
+    const double theta = step(rng), y = step(rng), x = 0.1 + std::abs(step(rng));
+    pose = pose * Pose2(x, y, theta);
   }
   return poses;
 }

@@ -41,8 +41,10 @@ std::vector<PoseGraphEdge> DriftingOdometry(const std::vector<Pose2>& truth,
     PoseGraphEdge edge;
     edge.from = static_cast<int>(i);
     edge.to = static_cast<int>(i + 1);
-    edge.relative =
-        Pose2(step.x + noise(rng), step.y + noise(rng), step.theta + DegToRad(0.2) + noise(rng));
+    // One draw a statement, θ first: argument order is unspecified (GCC's, last to first).
+    const double theta = step.theta + DegToRad(0.2) + noise(rng);
+    const double y = step.y + noise(rng), x = step.x + noise(rng);
+    edge.relative = Pose2(x, y, theta);
     edge.sigmas = Eigen::Vector3d(0.05, 0.05, 0.02);
     edges.push_back(edge);
     initial->push_back(initial->back() * edge.relative);
