@@ -15,6 +15,8 @@ packages=(
 # the command-line tools (rosbag, rostopic, rosservice, roslaunch) to use them on a robot.
 ros_packages=(
   ros-core-dev librosbag-dev libtf2-ros-dev libtf2-msgs-dev libsensor-msgs-dev
+  # bag_structure.cc decompresses chunks with rosbag's own libraries (also rosbag's dependencies).
+  libbz2-dev libroslz4-dev
   libnav-msgs-dev libgeometry-msgs-dev libvisualization-msgs-dev libstd-srvs-dev
   python3-rosbag python3-rostopic python3-rosservice python3-roslaunch
   # The node tests' checkers (tests/ros/node_checker.py, mapping_checker.py) are rospy nodes.

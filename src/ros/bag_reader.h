@@ -94,8 +94,8 @@ Status BagReader::ForEach(const std::vector<std::string>& topics,
       std::vector<std::uint8_t> bytes(instance.size());
       ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
       instance.write(out);
-      const Status fits = LayoutOf<Message>().Check(bytes.data(), bytes.size());
-      if (!fits.ok()) return Status::Error(where + ": " + fits.message());
+      SEMCHAIN_RETURN_IF_ERROR(
+          LayoutOf<Message>().Check(bytes.data(), bytes.size()).WithContext(where));
       Message msg;
       ros::serialization::IStream in(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
       ros::serialization::deserialize(in, msg);

@@ -140,27 +140,23 @@ Result<ChunkContents> CheckChunkRecords(const std::string& data, const BagStruct
   };
   ChunkContents contents;
   for (std::uint64_t at = 0; at < data.size();) {
+    const std::string where = "inside the chunk at byte " + std::to_string(at);
     Result<Record> record = ReadRecord(read, at, data.size(), limits);
-    if (!record.ok()) {
-      return Status::Error("inside the chunk at byte " + std::to_string(at) + ": " +
-                           record.status().message());
-    }
+    if (!record.ok()) return record.status().WithContext(where);
     if (record->op != kMessageData && record->op != kConnection) {
-      return Status::Error("inside the chunk at byte " + std::to_string(at) + ": a record of op " +
-                           std::to_string(record->op) +
+      return Status::Error(where + ": a record of op " + std::to_string(record->op) +
                            " (a chunk holds messages and connections)");
     }
-    const std::string where = "inside the chunk at byte " + std::to_string(at) + ": ";
     const Result<std::uint64_t> connection = NumberField(record->fields, "conn", 4);
-    if (!connection.ok()) return Status::Error(where + connection.status().message());
+    if (!connection.ok()) return connection.status().WithContext(where);
     contents.connections.insert(static_cast<std::uint32_t>(*connection));
     if (record->op == kConnection) {
       const Result<Fields> header =
           ParseFields(std::string_view(data).substr(record->data_offset, record->data_length));
-      if (!header.ok()) return Status::Error(where + "connection: " + header.status().message());
+      if (!header.ok()) return header.status().WithContext(where + ": connection");
     } else {
       const Result<std::uint64_t> time = NumberField(record->fields, "time", 8);
-      if (!time.ok()) return Status::Error(where + "message: " + time.status().message());
+      if (!time.ok()) return time.status().WithContext(where + ": message");
       contents.message_starts.insert(static_cast<std::uint32_t>(at));
     }
     at = record->end;
@@ -230,6 +226,13 @@ class BagChecker {
  private:
   FileReader Reader() const { return FileReader{&in_}; }
 
+  // The record's data bytes (bounded by the file: ReadRecord checked the length).
+  Result<std::string> ReadData(const Record& record) const {
+    std::string data(record.data_length, '\0');
+    SEMCHAIN_RETURN_IF_ERROR(Reader()(record.data_offset, record.data_length, data.data()));
+    return data;
+  }
+
   Status At(std::uint64_t offset, const std::string& what) const {
     return Status::Error("byte " + std::to_string(offset) + ": " + what);
   }
@@ -261,10 +264,10 @@ class BagChecker {
                         std::to_string(std::max<std::uint64_t>(*size, record.data_length)) +
                         " bytes (at most " + std::to_string(limits_.max_chunk_bytes) + ")");
         }
-        std::string data(record.data_length, '\0');
-        SEMCHAIN_RETURN_IF_ERROR(Reader()(record.data_offset, record.data_length, data.data()));
+        Result<std::string> data = ReadData(record);
+        if (!data.ok()) return data.status();
         Result<std::string> plain =
-            Decompress(compression->second, std::move(data), static_cast<std::uint32_t>(*size));
+            Decompress(compression->second, std::move(*data), static_cast<std::uint32_t>(*size));
         if (!plain.ok()) return At(record.offset, plain.status().message());
         Result<ChunkContents> contents = CheckChunkRecords(*plain, limits_);
         if (!contents.ok()) return At(record.offset, contents.status().message());
@@ -290,10 +293,10 @@ class BagChecker {
                                        std::to_string(record.data_length) + " bytes");
         }
         if (!chunk_) return At(record.offset, "an index before any chunk");
-        std::string entries(record.data_length, '\0');
-        SEMCHAIN_RETURN_IF_ERROR(Reader()(record.data_offset, record.data_length, entries.data()));
+        const Result<std::string> entries = ReadData(record);
+        if (!entries.ok()) return entries.status();
         for (std::uint64_t i = 0; i < *count; ++i) {
-          const std::uint32_t offset = ReadU32(entries.data() + i * 12 + 8);
+          const std::uint32_t offset = ReadU32(entries->data() + i * 12 + 8);
           if (chunk_->message_starts.count(offset) == 0) {
             return At(record.offset, "index entry " + std::to_string(i) + " points at byte " +
                                          std::to_string(offset) +
@@ -318,10 +321,10 @@ class BagChecker {
                                        std::to_string(record.data_length) + " bytes");
         }
         chunk_positions_.emplace_back(record.offset, *position);
-        std::string entries(record.data_length, '\0');
-        SEMCHAIN_RETURN_IF_ERROR(Reader()(record.data_offset, record.data_length, entries.data()));
+        const Result<std::string> entries = ReadData(record);
+        if (!entries.ok()) return entries.status();
         for (std::uint64_t i = 0; i < *count; ++i) {
-          referenced_.emplace(ReadU32(entries.data() + i * 8), record.offset);
+          referenced_.emplace(ReadU32(entries->data() + i * 8), record.offset);
         }
         return Status::Ok();
       }
@@ -331,9 +334,9 @@ class BagChecker {
           return At(record.offset, "connection: " + connection.status().message());
         if (record.fields.count("topic") == 0) return At(record.offset, "connection: no topic");
         known_.insert(static_cast<std::uint32_t>(*connection));
-        std::string data(record.data_length, '\0');
-        SEMCHAIN_RETURN_IF_ERROR(Reader()(record.data_offset, record.data_length, data.data()));
-        const Result<Fields> header = ParseFields(data);
+        const Result<std::string> data = ReadData(record);
+        if (!data.ok()) return data.status();
+        const Result<Fields> header = ParseFields(*data);
         if (!header.ok()) return At(record.offset, "connection: " + header.status().message());
         return Status::Ok();
       }
@@ -416,9 +419,7 @@ Status CheckBagStructure(const std::filesystem::path& path, const BagStructureLi
                          ": not a readable ROS bag: its first line is not '#ROSBAG V2.0'");
   }
   BagChecker checker(in, size, limits);
-  const Status status = checker.Run();
-  if (!status.ok()) return Status::Error(path.string() + ": " + status.message());
-  return Status::Ok();
+  return checker.Run().WithContext(path.string());
 }
 
 }  // namespace semchain::ros1
