@@ -88,8 +88,6 @@ void LocalizationNode::Start() {
   scan_subscriber_ = nh_.subscribe("scan", kQueue, &LocalizationNode::OnScan, this);
   initial_pose_subscriber_ =
       nh_.subscribe("initialpose", 2, &LocalizationNode::OnInitialPose, this);
-  global_localization_service_ =
-      nh_.advertiseService("global_localization", &LocalizationNode::OnGlobalLocalization, this);
   if (localization::IsSemanticMethod(localizer_.method())) {
     camera_info_subscriber_ =
         nh_.subscribe("camera/color/camera_info", 2, &LocalizationNode::OnCameraInfo, this);
@@ -110,6 +108,10 @@ void LocalizationNode::Start() {
                                     parameters_.initial_pose[2]),
                               cov.asDiagonal());
   }
+  // Advertised last: whoever waits for the service finds the node ready and every subscription
+  // registered with the master.
+  global_localization_service_ =
+      nh_.advertiseService("global_localization", &LocalizationNode::OnGlobalLocalization, this);
   ROS_INFO("semchain_ros: %s on %s (%zu objects, %zu chains)", parameters_.method.c_str(),
            parameters_.map.c_str(), map_->semantic.objects.size(), map_->semantic.chains.size());
 }

@@ -7,11 +7,11 @@ when no object appeared before the bag's end or the save failed.
 """
 import argparse
 import json
-import subprocess
 import sys
 import threading
 import time
 
+import play_bag
 import rosbag
 import rospy
 from nav_msgs.msg import OccupancyGrid
@@ -48,9 +48,7 @@ def main() -> int:
     rospy.wait_for_service("/semchain/save_map", timeout=args.timeout)
     save_map = rospy.ServiceProxy("/semchain/save_map", Trigger)
     wall_start = time.monotonic()
-    # rosbag play talks on stdout; the checker's stdout is its JSON result.
-    play = subprocess.run(["rosbag", "play", "--clock", "-q", "-r", str(args.rate), args.bag],
-                          stdout=subprocess.DEVNULL, check=False)
+    play_exit = play_bag.play(args.bag, args.rate, rospy.get_name())
     play_seconds = time.monotonic() - wall_start
     time.sleep(1.0)  # the last scans are still on their way
     save_start = time.monotonic()
@@ -58,13 +56,13 @@ def main() -> int:
     save_seconds = time.monotonic() - save_start
     with lock:
         result = dict(seen)
-    result.update({"bag": args.bag, "rosbag_play_exit": play.returncode,
+    result.update({"bag": args.bag, "rosbag_play_exit": play_exit,
                    "bag_seconds": bag_end - bag_start, "play_wall_seconds": play_seconds,
                    "save_success": saved.success, "save_message": saved.message,
                    "save_wall_seconds": save_seconds})
     first = result["first_objects_stamp"]
     result["objects_before_end_s"] = None if first is None else bag_end - first
-    ok = play.returncode == 0 and saved.success and first is not None and first < bag_end
+    ok = play_exit == 0 and saved.success and first is not None and first < bag_end
     result["success"] = bool(ok)
     print(json.dumps(result, indent=2))
     return 0 if ok else 1

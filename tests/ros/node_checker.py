@@ -9,11 +9,11 @@ exits 1 when the last pose is not within the tolerances.
 import argparse
 import json
 import math
-import subprocess
 import sys
 import threading
 import time
 
+import play_bag
 import rosbag
 import rospy
 from geometry_msgs.msg import PoseStamped, PoseWithCovarianceStamped
@@ -90,13 +90,11 @@ def main() -> int:
             threading.Thread(target=global_localization).start()
 
     rospy.Subscriber("/clock", Clock, on_clock, queue_size=10)
-    # rosbag play talks on stdout; the checker's stdout is its JSON result.
-    play = subprocess.run(["rosbag", "play", "--clock", "-q", "-r", str(args.rate), args.bag],
-                          stdout=subprocess.DEVNULL, check=False)
+    play_exit = play_bag.play(args.bag, args.rate, rospy.get_name())
     # The last scans' poses are still on their way.
     time.sleep(1.0)
 
-    result = {"bag": args.bag, "rosbag_play_exit": play.returncode}
+    result = {"bag": args.bag, "rosbag_play_exit": play_exit}
     with recorder.lock:
         poses = list(recorder.poses)
         truth = list(recorder.truth)
@@ -105,7 +103,7 @@ def main() -> int:
     if args.kidnap_at is not None:
         result["kidnap_called"] = kidnap_called.is_set()
         result["poses_before_kidnap"] = pose_count_at_kidnap[0]
-    ok = play.returncode == 0 and poses and truth
+    ok = play_exit == 0 and poses and truth
     if poses and truth:
         stamp, x, y, theta = poses[-1]
         t = truth_at(truth, stamp)
