@@ -91,6 +91,9 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
       "Pre-localize from the current frame's objects only, not from all seen during the turn");
   command->add_flag("!--no-single-object", args->options.method.single_object,
                     "semantic-scanmatch: no single-object hypotheses before the whole-map search");
+  command->add_flag("!--no-laser-refine", args->options.prelocalization.laser_refine,
+                    "Pre-localization hypotheses from the objects alone, not refined by the laser "
+                    "scan");
   command->add_flag("!--no-lock-recheck", args->options.method.recheck_lock,
                     "semantic-scanmatch: do not re-check the lock against later frames' objects");
   AddDetectorOptions(command, &args->detector,

@@ -460,8 +460,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   amcl.alpha2 = std::max(kMinAlpha, kAlphaMargin * noise[1]);
   amcl.alpha3 = std::max(kMinAlpha, kAlphaMargin * noise[2]);
   amcl.alpha4 = std::max(kMinAlpha, kAlphaMargin * noise[3]);
-  localization::LocalizerMap map(built->occupancy, built->semantic, amcl,
-                                 localization::PreLocalizationOptions(),
+  localization::LocalizerMap map(built->occupancy, built->semantic, amcl, options.prelocalization,
                                  localization::ScanMatchRelocalizerOptions());
   if (std::find(options.methods.begin(), options.methods.end(), "semantic-amcl-bow") !=
       options.methods.end()) {

@@ -36,6 +36,8 @@ struct RelocBenchmarkOptions {
   double trial_forward = 1.0;
   // How the semantic methods use the camera (observation memory, single-object hypotheses).
   localization::LocalizerOptions method;
+  // How the objects pre-localize (laser refinement of the hypotheses, look-alike margins, ...).
+  localization::PreLocalizationOptions prelocalization;
   // Where the runs are made (removed afterwards); a temporary directory when empty.
   std::filesystem::path work_dir;
   // Keep the runs in work_dir (the mapping run with its map in mapping/map/, each trial's

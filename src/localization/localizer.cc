@@ -232,12 +232,22 @@ std::function<double(const Pose2&)> Localizer::LaserScorer(const StampedScan& sc
   };
 }
 
-void Localizer::NoteHypotheses(const std::vector<PoseCandidate>& candidates, bool first_counts) {
+// Moves a hypothesis to where this scan fits the map best nearby (the scan matcher's Ceres
+// refinement): the objects place the robot to about a decimetre, the walls to centimetres.
+std::function<Pose2(const Pose2&)> Localizer::LaserRefiner(const StampedScan& scan) const {
+  return [this, &scan](const Pose2& pose) { return map_.matcher.Refine(ScanPoints(scan), pose); };
+}
+
+void Localizer::NoteHypotheses(const std::vector<PoseCandidate>& candidates) {
   if (candidates.empty()) return;
   hypotheses_ = ToHypotheses(candidates);
-  if (first_counts && !statistics_.first_prelocalization) {
-    statistics_.first_prelocalization = candidates.front().pose;
-  }
+}
+
+// The first pair hypothesis the method goes by (the benchmark's pre-localization error, the
+// paper's measure): one that stands out, or the best after a full turn left look-alikes undecided.
+// Hypotheses kept side by side while undecided are not a pose the method stands by.
+void Localizer::NoteAccepted(const PoseCandidate& candidate) {
+  if (!statistics_.first_prelocalization) statistics_.first_prelocalization = candidate.pose;
 }
 
 bool Localizer::NoteDecided(const std::vector<PoseCandidate>& candidates) {
@@ -273,10 +283,10 @@ std::vector<PoseCandidate> Localizer::PreLocalize(const StampedScan& scan,
                                                   const std::vector<ObservedObject>& observed,
                                                   int min_agreeing, bool note) {
   if (observed.size() < 2) return {};
-  std::vector<PoseCandidate> candidates =
-      map_.prelocalizer.Localize(observed, LaserScorer(scan), nullptr, min_agreeing);
+  std::vector<PoseCandidate> candidates = map_.prelocalizer.Localize(
+      observed, LaserScorer(scan), nullptr, min_agreeing, LaserRefiner(scan));
   ++statistics_.prelocalizations;
-  if (note) NoteHypotheses(candidates, true);
+  if (note) NoteHypotheses(candidates);
   return candidates;
 }
 
@@ -285,9 +295,9 @@ std::vector<PoseCandidate> Localizer::PreLocalizeSingle(
   // Not noted as the first pre-localization: its many circle hypotheses are for the scan matcher
   // to tell apart, and the benchmark's pre-localization error is the paper's (pairs).
   std::vector<PoseCandidate> candidates =
-      map_.prelocalizer.LocalizeSingle(observed, LaserScorer(scan));
+      map_.prelocalizer.LocalizeSingle(observed, LaserScorer(scan), LaserRefiner(scan));
   ++statistics_.single_object_prelocalizations;
-  NoteHypotheses(candidates, false);
+  NoteHypotheses(candidates);
   return candidates;
 }
 
@@ -313,7 +323,7 @@ std::vector<PoseCandidate> Localizer::PreLocalizeHidden(
   if (occluded.empty()) return {};
   const std::vector<int> neighbours = {occluded.front().upstream, occluded.front().downstream};
   std::vector<PoseCandidate> candidates =
-      map_.prelocalizer.Localize(observed, LaserScorer(scan), &neighbours);
+      map_.prelocalizer.Localize(observed, LaserScorer(scan), &neighbours, 0, LaserRefiner(scan));
   ++statistics_.hidden_object_prelocalizations;
   return candidates;
 }
@@ -351,10 +361,11 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
           (candidates.empty() || hidden.front().agreeing >= candidates.front().agreeing)) {
         candidates = std::move(hidden);
       }
-      NoteHypotheses(candidates, true);
+      NoteHypotheses(candidates);
     }
     if (!candidates.empty()) {
       const bool decided = NoteDecided(candidates);
+      if (decided) NoteAccepted(candidates.front());
       // A filter that converged on a look-alike place while the objects did not tell the
       // places apart is moved once they do.
       const bool relocate = seeded_ && decided && LockedOnLookAlike(scan, observed, candidates);
@@ -478,11 +489,14 @@ std::optional<RelocalizationResult> Localizer::Relocalize(const StampedScan& sca
     candidates = PreLocalize(scan, observed);
   }
   const bool full_turn = FullTurn();
-  if (!candidates.empty() && !NoteDecided(candidates) && !full_turn) {
-    // Not sure yet: a look-alike place explains the objects seen as well; the turn goes on and
-    // shows more of them. After a full turn everything around has been seen, and the best match
-    // is taken (the lock re-check corrects it should later objects rule it out).
-    return std::nullopt;
+  if (!candidates.empty()) {
+    if (!NoteDecided(candidates) && !full_turn) {
+      // Not sure yet: a look-alike place explains the objects seen as well; the turn goes on
+      // and shows more of them. After a full turn everything around has been seen, and the best
+      // match is taken (the lock re-check corrects it should later objects rule it out).
+      return std::nullopt;
+    }
+    NoteAccepted(candidates.front());
   }
   if (candidates.empty() && full_turn && options_.single_object && !single_object_tried_) {
     // Once: the circles give many windows, and a turn's objects are all remembered (also when

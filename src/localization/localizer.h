@@ -135,7 +135,7 @@ struct LocalizerStatistics {
   int scans = 0;
   int iterations = 0;                          // filter updates and matcher runs
   double search_cpu_seconds = 0.0;             // scan matchers: searching before tracking began
-  std::optional<Pose2> first_prelocalization;  // the first best hypothesis
+  std::optional<Pose2> first_prelocalization;  // the first pair hypothesis accepted
   int prelocalizations = 0;                    // pre-localizations with ≥ 2 objects
   int single_object_prelocalizations = 0;      // ... with single-object hypotheses
   int hidden_object_prelocalizations = 0;      // ... from a hidden object's neighbours (BoW)
@@ -183,9 +183,11 @@ class Localizer {
  private:
   const std::vector<Eigen::Vector2d>& ScanPoints(const StampedScan& scan) const;
   std::function<double(const Pose2&)> LaserScorer(const StampedScan& scan) const;
-  void NoteHypotheses(const std::vector<PoseCandidate>& candidates, bool first_counts);
+  std::function<Pose2(const Pose2&)> LaserRefiner(const StampedScan& scan) const;
+  void NoteHypotheses(const std::vector<PoseCandidate>& candidates);
+  void NoteAccepted(const PoseCandidate& candidate);
   std::vector<ObservedObject> Observe(const StampedScan& scan, const LocalizerFrame& frame);
-  // 'note': the hypotheses count as the method's (pre-localization error, hypotheses()); false
+  // 'note': the hypotheses count as the method's (hypotheses()); false
   // when the caller may still replace them.
   std::vector<PoseCandidate> PreLocalize(const StampedScan& scan,
                                          const std::vector<ObservedObject>& observed,

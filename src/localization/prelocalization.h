@@ -64,6 +64,15 @@ struct PreLocalizationOptions {
   // ones (least squares over every object it explains): two objects seen nearly opposite each
   // other fix the position across the line between them, where the circles barely meet.
   bool refine = true;
+  // With a laser refinement given (Localize's and LocalizeSingle's 'laser_refine'), each kept
+  // hypothesis is moved to where the current scan fits the map best nearby (seed 001's Ceres
+  // refinement, no search) when that stays within laser_refine_max_shift (metres) and
+  // laser_refine_max_turn (radians), explains as many objects and fits the scan better: the
+  // mapped objects' centres come from detections and are known to about a decimetre, the walls
+  // to a few centimetres.
+  bool laser_refine = true;
+  double laser_refine_max_shift = 0.3;
+  double laser_refine_max_turn = 0.15;
   // Single-object hypotheses (LocalizeSingle): points on each circle this far apart (metres),
   // the laser fit they need (higher than min_laser_score: nothing else supports them), and how
   // many of the nearest observations are tried.
@@ -129,10 +138,13 @@ class PreLocalizer {
   // neighbours of an object the bag of words found hidden). Hypotheses that explain fewer than
   // 'min_agreeing' of the observed objects are dropped before the laser rates them (a caller
   // that only wants poses explaining more than one it has).
-  std::vector<PoseCandidate> Localize(const std::vector<ObservedObject>& observed,
-                                      const std::function<double(const Pose2&)>& laser_score = {},
-                                      const std::vector<int>* only = nullptr,
-                                      int min_agreeing = 0) const;
+  // 'laser_refine' (may be empty) moves a pose to where the current scan fits the map best
+  // nearby (see PreLocalizationOptions::laser_refine; needs 'laser_score').
+  std::vector<PoseCandidate> Localize(
+      const std::vector<ObservedObject>& observed,
+      const std::function<double(const Pose2&)>& laser_score = {},
+      const std::vector<int>* only = nullptr, int min_agreeing = 0,
+      const std::function<Pose2(const Pose2&)>& laser_refine = {}) const;
 
   // Hypotheses from single objects, for when no two objects in view form a mapped pair (a
   // corridor where the objects are far apart): the robot lies on the circle around each mapped
@@ -141,7 +153,8 @@ class PreLocalizer {
   // 'max_single_objects' observations are used, best laser fit first.
   std::vector<PoseCandidate> LocalizeSingle(
       const std::vector<ObservedObject>& observed,
-      const std::function<double(const Pose2&)>& laser_score) const;
+      const std::function<double(const Pose2&)>& laser_score,
+      const std::function<Pose2(const Pose2&)>& laser_refine = {}) const;
 
   // The mapped pairs of classes (a, b) whose distance D satisfies the tolerance for an
   // observed distance d (seed 001 retrieval): (object id a, object id b, D).
@@ -182,6 +195,19 @@ class PreLocalizer {
   void AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j, int a, int b,
                          std::vector<PoseCandidate>* out) const;
   bool InFreeSpace(const Eigen::Vector2d& point) const;
+  // Moves 'candidate' where 'laser_refine' says the scan fits best, within the limits of
+  // PreLocalizationOptions::laser_refine (agreement, matches and laser score updated).
+  void RefineOneByLaser(const std::vector<ObservedObject>& observed,
+                        const std::vector<int>& classes,
+                        const std::function<double(const Pose2&)>& laser_score,
+                        const std::function<Pose2(const Pose2&)>& laser_refine,
+                        PoseCandidate* candidate) const;
+  // RefineOneByLaser for each candidate, then merges and ranks them again (BestDistinct).
+  std::vector<PoseCandidate> RefineByLaser(const std::vector<ObservedObject>& observed,
+                                           const std::vector<int>& classes,
+                                           const std::function<double(const Pose2&)>& laser_score,
+                                           const std::function<Pose2(const Pose2&)>& laser_refine,
+                                           std::vector<PoseCandidate> candidates) const;
   // Merges coinciding candidates (the best first) and keeps max_hypotheses.
   std::vector<PoseCandidate> BestDistinct(std::vector<PoseCandidate> candidates) const;
   // The observed objects a robot at 'pose' explains, each matched to one mapped object.
@@ -191,9 +217,11 @@ class PreLocalizer {
   void Refine(const std::vector<ObservedObject>& observed, std::span<const Match> matched,
               Pose2* pose) const;
   // Agreement and refinement of every candidate; drops those agreeing with fewer than
-  // 'min_agreeing' objects, then rates the rest by the laser and drops what it rules out.
+  // 'min_agreeing' objects, then rates the rest by the laser (those explaining the most objects
+  // refined by it first when they fit below the cut) and drops what it rules out.
   void Rate(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
-            const std::function<double(const Pose2&)>& laser_score, double min_laser_score,
+            const std::function<double(const Pose2&)>& laser_score,
+            const std::function<Pose2(const Pose2&)>& laser_refine, double min_laser_score,
             int min_agreeing, std::vector<PoseCandidate>* candidates) const;
 
   std::vector<semantic::SemanticObject> objects_;

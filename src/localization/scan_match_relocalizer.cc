@@ -102,6 +102,11 @@ RelocalizationResult ScanMatchRelocalizer::Finish(
   return result;
 }
 
+Pose2 ScanMatchRelocalizer::Refine(const std::vector<Eigen::Vector2d>& points,
+                                   const Pose2& initial) const {
+  return mapping::RefineWithCeres(grid_, points, initial, options_.ceres).pose;
+}
+
 RelocalizationResult ScanMatchRelocalizer::RelocalizeInWindow(
     const LaserScan& scan, const Pose2& laser_offset, const mapping::SearchWindow& window) const {
   const std::vector<Eigen::Vector2d> points = MatchPoints(scan, laser_offset);

@@ -101,6 +101,9 @@ class ScanMatchRelocalizer {
   RelocalizationResult RelocalizeGlobal(const LaserScan& scan, const Pose2& laser_offset) const;
   RelocalizationResult RelocalizeGlobal(const std::vector<Eigen::Vector2d>& points) const;
 
+  // 'initial' refined for 'points' on the match grid (the Ceres step alone, no search).
+  Pose2 Refine(const std::vector<Eigen::Vector2d>& points, const Pose2& initial) const;
+
   const mapping::MatchGrid& grid() const { return grid_; }
 
  private:
