@@ -7,6 +7,7 @@
 #include "apps/semantic_drawing.h"
 #include "detection/run_detection.h"
 #include "detection/yolo_detector.h"
+#include "semantic/keyframe_selection.h"
 #include "semantic/keyframes.h"
 #include "semantic/semantic_chain.h"
 #include "semantic/semantic_map_io.h"
@@ -90,7 +91,7 @@ Status WriteSemanticOutputs(const fs::path& out, const mapping::MapImage& map,
                             const semantic::SemanticMappingResult& result, const fs::path& run,
                             double scale) {
   const semantic::KeyframeDatabase keyframes{fs::absolute(run).lexically_normal().string(),
-                                             result.keyframes};
+                                             semantic::SelectCoveringKeyframes(result.keyframes)};
   SEMCHAIN_RETURN_IF_ERROR(semantic::WriteKeyframes(out / "keyframes.json", keyframes));
   SEMCHAIN_RETURN_IF_ERROR(WriteSemanticPng(map, result.map, scale, out / "semantic.png"));
   return semantic::WriteSemanticJson(out / "semantic.json", result.map);
@@ -102,9 +103,10 @@ std::string SemanticSummary(const semantic::SemanticMappingResult& result) {
   char text[256];
   std::snprintf(text, sizeof(text),
                 "%d frames, %d detections -> %zu objects, %zu chains (%zu links), %zu neighbour "
-                "links, %zu keyframes",
+                "links, %zu keyframes (of %zu frames with objects)",
                 result.frames, result.detections, result.map.objects.size(),
                 result.map.chains.size(), links, result.map.neighbours.size(),
+                semantic::SelectCoveringKeyframes(result.keyframes).size(),
                 result.keyframes.size());
   return text;
 }

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "mapping/map_io.h"
+#include "semantic/keyframe_selection.h"
 
 namespace semchain::app {
 namespace {
@@ -139,7 +140,8 @@ Result<semantic::LiveSemanticResult> SlamSemantic::Finish(
 
 semantic::KeyframeDatabase SlamSemantic::Keyframes(
     const semantic::LiveSemanticResult& result) const {
-  return {fs::absolute(args_.run).lexically_normal().string(), result.mapping.keyframes};
+  return {fs::absolute(args_.run).lexically_normal().string(),
+          semantic::SelectCoveringKeyframes(result.mapping.keyframes)};
 }
 
 Status SlamSemantic::WriteExtras(const fs::path& out, const mapping::MapImage& map,

@@ -24,6 +24,7 @@
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
 #include "mapping/slam_pipeline.h"
+#include "semantic/keyframe_selection.h"
 #include "semantic/keyframes.h"
 #include "semantic/semantic_map_io.h"
 #include "semantic/semantic_run.h"
@@ -63,7 +64,8 @@ Result<std::shared_ptr<const bow::KeyframeRecognizer>> BuildRecognizer(const Bui
   options.seed = seed;
   Result<bow::Vocabulary> vocabulary = bow::Vocabulary::Train(*descriptors, options);
   if (!vocabulary.ok()) return vocabulary.status();
-  semantic::KeyframeDatabase database{run.string(), built.keyframes};
+  semantic::KeyframeDatabase database{run.string(),
+                                      semantic::SelectCoveringKeyframes(built.keyframes)};
   Result<bow::KeyframeRecognizer> recognizer = bow::KeyframeRecognizer::Build(
       std::move(*vocabulary), std::move(database), bow::KeyframeRecognizerOptions(), run);
   if (!recognizer.ok()) return recognizer.status();

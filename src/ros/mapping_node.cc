@@ -15,6 +15,7 @@
 #include "ros/ros_image.h"
 #include "ros/ros_map.h"
 #include "semantic/box_depth.h"
+#include "semantic/keyframe_selection.h"
 #include "semantic/map_folder_writer.h"
 
 namespace semchain::ros1 {
@@ -250,12 +251,18 @@ Status MappingNode::Save() {
   // ("run": "."), those of keyframes without an image left out, and keyframes.json is written
   // after them (which keyframes it lists is known only then); with no image at all the folder
   // writer writes the keyframes naming no folder (semantic-amcl-bow then says it needs images).
-  semantic::KeyframeDatabase keyframes{"", mapped.keyframes};
   const bool with_images = keyframe_images_.size() > 0;
+  // The covering subset (seed 000 §3.1 step 2) of the frames the bag of words can describe.
+  std::vector<semantic::Keyframe> candidates = mapped.keyframes;
+  if (with_images) {
+    std::erase_if(candidates,
+                  [this](const semantic::Keyframe& k) { return !keyframe_images_.Has(k.frame); });
+  }
+  const std::vector<semantic::Keyframe> selected = semantic::SelectCoveringKeyframes(candidates);
+  semantic::KeyframeDatabase keyframes{"", selected};
   const auto write_images = [&](const std::filesystem::path& staging) -> Status {
     if (!with_images) return Status::Ok();
-    Result<std::vector<semantic::Keyframe>> written =
-        keyframe_images_.Write(staging, mapped.keyframes);
+    Result<std::vector<semantic::Keyframe>> written = keyframe_images_.Write(staging, selected);
     if (!written.ok()) return written.status();
     keyframes = {".", std::move(*written)};
     return semantic::WriteKeyframes(staging / "keyframes.json", keyframes);
