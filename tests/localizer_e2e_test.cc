@@ -32,14 +32,15 @@ using localization::LocalizerState;
 
 // A bundled world and the maps a perfect mapping run would make of it.
 void LoadWorldAndMaps(const std::string& name, sim::World** world_out,
-                      localization::LocalizerMap** map_out) {
+                      localization::LocalizerMap** map_out,
+                      const localization::PreLocalizationOptions& prelocalization = {}) {
   Result<sim::World> world = sim::LoadWorld(fs::path(SEMCHAIN_SOURCE_DIR) / "worlds" / name);
   ASSERT_TRUE(world.ok()) << world.status().message();
   *world_out = new sim::World(std::move(*world));
   const e2e::TruthMaps maps = e2e::MapsFromTruth(**world_out);
-  *map_out = new localization::LocalizerMap(
-      maps.occupancy, maps.semantic, localization::AmclOptions(),
-      localization::PreLocalizationOptions(), localization::ScanMatchRelocalizerOptions());
+  *map_out =
+      new localization::LocalizerMap(maps.occupancy, maps.semantic, localization::AmclOptions(),
+                                     prelocalization, localization::ScanMatchRelocalizerOptions());
 }
 
 // Frame i of a trial as the Localizer takes it (its colour image by path, for the bag of words).
@@ -187,18 +188,30 @@ TEST_F(LocalizerTest, KidnappedRobotIsFoundAgainAfterGlobalRelocalization) {
 // yet"); turning, it sees an object that only its own office explains, and locks there.
 class LookAlikeOfficesTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() { LoadWorldAndMaps("office_floor.yaml", &world_, &map_); }
+  static void SetUpTestSuite() {
+    LoadWorldAndMaps("office_floor.yaml", &world_, &map_);
+    // Objects agreeing by their implied centres only (the pre-localization before
+    // agreement_by_outline): there a filter can still settle in a look-alike office first.
+    localization::PreLocalizationOptions by_centre;
+    by_centre.agreement_by_outline = false;
+    sim::World* unused = nullptr;
+    LoadWorldAndMaps("office_floor.yaml", &unused, &centre_map_, by_centre);
+    delete unused;
+  }
   static void TearDownTestSuite() {
+    delete centre_map_;
     delete map_;
     delete world_;
   }
 
   static sim::World* world_;
   static localization::LocalizerMap* map_;
+  static localization::LocalizerMap* centre_map_;
 };
 
 sim::World* LookAlikeOfficesTest::world_ = nullptr;
 localization::LocalizerMap* LookAlikeOfficesTest::map_ = nullptr;
+localization::LocalizerMap* LookAlikeOfficesTest::centre_map_ = nullptr;
 
 TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart) {
   // A benchmark trial start (office_floor, seed 1, trial 6): the first objects in view are a
@@ -218,6 +231,7 @@ TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart)
   bool waited_on_look_alikes = false;
   std::optional<std::size_t> first_lock;
   Pose2 pose_at_lock;
+  double worst_after_lock = 0.0;  // metres from the truth, over every scan after the first lock
   for (std::size_t i = 0; i < inputs.scans.size(); ++i) {
     localizer.AddScan(inputs.scans[i]);
     if (localizer.state() == LocalizerState::kHypothesesPending) {
@@ -237,18 +251,25 @@ TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart)
       first_lock = i;
       pose_at_lock = *localizer.pose();
     }
+    if (first_lock && localizer.pose()) {
+      worst_after_lock =
+          std::max(worst_after_lock,
+                   (localizer.pose()->translation() - trial->truth[i].pose.translation()).norm());
+    }
   }
   EXPECT_TRUE(waited_on_look_alikes);
   ASSERT_TRUE(first_lock.has_value());
   EXPECT_GT(localizer.statistics().undecided_prelocalizations, 0);
-  // The first lock is already the right office, and it holds to the end.
+  // The first lock is already the right office, and the robot stays in it to the end: the
+  // nearest look-alike office is 6 m away. (The lock re-check may still re-anchor tracking within
+  // the office: here it moves a pose that drifted 0.3 m to one explaining more of the objects.)
   EXPECT_LE((pose_at_lock.translation() - trial->truth[*first_lock].pose.translation()).norm(),
             0.25);
+  EXPECT_LT(worst_after_lock, 1.0);
   ASSERT_TRUE(localizer.pose().has_value());
   const Pose2 at_end = *localizer.pose();
   EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
   EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
-  EXPECT_EQ(localizer.statistics().lock_corrections, 0);
 }
 
 TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRuleItOut) {
@@ -256,7 +277,10 @@ TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRule
   // a look-alike office before the objects tell the offices apart; once the objects seen put the
   // robot elsewhere and explain two more of them, the filter is seeded there again. (On these
   // truth maps the renewed prior alone also brings it back by the end; in the benchmark, on the
-  // SLAM map, this trial ended 12 m away, in the look-alike office, before these changes.)
+  // SLAM map, this trial ended 12 m away, in the look-alike office, before these changes.) With
+  // agreement by the outline the right office explains more objects from the start and the
+  // filter never settles elsewhere on this trial, so the move is checked on agreement by the
+  // implied centres alone.
   const Pose2 start(14.87, 5.42, -1.35);
   const fs::path work =
       fs::temp_directory_path() / ("semchain_lookalike_amcl_" + std::to_string(::getpid()));
@@ -265,7 +289,8 @@ TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRule
   fs::remove_all(work);
   ASSERT_TRUE(trial.ok()) << trial.status().message();
   const eval::RelocRunInputs& inputs = trial->inputs;
-  Localizer localizer(*map_, LocalizationMethod::kSemanticAmcl, localization::LocalizerOptions());
+  Localizer localizer(*centre_map_, LocalizationMethod::kSemanticAmcl,
+                      localization::LocalizerOptions());
   FeedTrial(inputs, &localizer);
   EXPECT_GE(localizer.statistics().lock_corrections, 1);
   ASSERT_TRUE(localizer.pose().has_value());

@@ -182,6 +182,10 @@ PreLocalizer::PreLocalizer(const semantic::SemanticMap& map, const mapping::MapI
     }
     outline_radius_.push_back(radius);
     mean_behind_.push_back(MeanCenterBehindSurface(object));
+    std::vector<cv::Point2f>& outline = outlines_.emplace_back();
+    for (const Eigen::Vector2d& corner : object.footprint) {
+      outline.emplace_back(static_cast<float>(corner.x()), static_cast<float>(corner.y()));
+    }
   }
   for (std::size_t a = 0; a < objects_.size(); ++a) {
     for (std::size_t b = 0; b < objects_.size(); ++b) {
@@ -335,8 +339,9 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
 
 void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
                                  const std::vector<int>& classes, const Pose2& pose,
-                                 std::vector<Match>* matched) const {
+                                 std::vector<Match>* matched, std::vector<Match>* by_centre) const {
   matched->clear();
+  if (by_centre != nullptr) by_centre->clear();
   const Eigen::Isometry2d world_from_robot = pose.ToIsometry();
   for (std::size_t k = 0; k < observed.size(); ++k) {
     if (classes[k] < 0) continue;
@@ -344,7 +349,9 @@ void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
     const Eigen::Vector2d surface = world_from_robot * s.surface;
     const Eigen::Vector2d ray = Unit(surface - pose.translation());
     int best = -1;
-    double best_error = options_.agreement_radius + options_.agreement_per_metre * s.range;
+    const double radius = options_.agreement_radius + options_.agreement_per_metre * s.range;
+    double best_error = radius;
+    double best_centre_error = radius;
     for (const int o : objects_of_class_[static_cast<std::size_t>(classes[k])]) {
       const semantic::SemanticObject& object = objects_[static_cast<std::size_t>(o)];
       // The centre lies at most the outline's radius behind the surface: an object farther than
@@ -358,13 +365,28 @@ void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
         continue;
       }
       const Eigen::Vector2d centre = surface + CenterBehindSurface(object, -ray) * ray;
-      const double error = (centre - object.center).norm();
+      const double centre_error = (centre - object.center).norm();
+      double error = centre_error;
+      if (options_.agreement_by_outline && outlines_[static_cast<std::size_t>(o)].size() >= 3) {
+        // A large object seen from close by or at a slant: the ray through the box centre hits
+        // its surface far from the line to its centre, and the centre it implies is off by up
+        // to half the object; the surface point itself lies on the mapped outline.
+        const double inside = cv::pointPolygonTest(
+            outlines_[static_cast<std::size_t>(o)],
+            cv::Point2f(static_cast<float>(surface.x()), static_cast<float>(surface.y())), true);
+        error = std::min(error, std::max(0.0, -inside));
+      }
       if (error < best_error) {
         best_error = error;
+        best_centre_error = centre_error;
         best = o;
       }
     }
-    if (best >= 0) matched->emplace_back(static_cast<int>(k), best);
+    if (best < 0) continue;
+    matched->emplace_back(static_cast<int>(k), best);
+    if (by_centre != nullptr && best_centre_error < radius) {
+      by_centre->emplace_back(static_cast<int>(k), best);
+    }
   }
 }
 
@@ -499,10 +521,13 @@ void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
                         double min_laser_score, int min_agreeing,
                         std::vector<PoseCandidate>* candidates) const {
   std::vector<Match> matched;
+  std::vector<Match> centred;
   for (PoseCandidate& candidate : *candidates) {
-    MatchAgreeing(observed, classes, candidate.pose, &matched);
+    MatchAgreeing(observed, classes, candidate.pose, &matched, &centred);
     if (options_.refine) {
-      Refine(observed, matched, &candidate.pose);
+      // Only objects whose implied centre agrees steer the alignment: one that agrees by its
+      // outline alone implies a centre that is off (that is why it needed the outline).
+      Refine(observed, centred, &candidate.pose);
       MatchAgreeing(observed, classes, candidate.pose, &matched);
     }
     candidate.agreeing = static_cast<int>(matched.size());

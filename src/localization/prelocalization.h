@@ -39,6 +39,11 @@ struct PreLocalizationOptions {
   // hypothesis puts it.
   double agreement_radius = 0.3;
   double agreement_per_metre = 0.05;
+  // The distance is the smaller of the centre's (the centre the surface point implies, behind it
+  // along the ray) and the surface point's own distance to the mapped outline, so that a sofa or
+  // a table seen from under a metre away, whose box-centre ray misses its centre by up to half
+  // its length, still agrees. false: the centre's alone.
+  bool agreement_by_outline = true;
   // A hypothesis must lie in free space of the occupancy map at least this far (metres) from
   // anything occupied.
   double clearance = 0.15;
@@ -211,8 +216,10 @@ class PreLocalizer {
   // Merges coinciding candidates (the best first) and keeps max_hypotheses.
   std::vector<PoseCandidate> BestDistinct(std::vector<PoseCandidate> candidates) const;
   // The observed objects a robot at 'pose' explains, each matched to one mapped object.
+  // 'by_centre' (may be null): those of them whose implied centre agrees (not only the outline).
   void MatchAgreeing(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
-                     const Pose2& pose, std::vector<Match>* matched) const;
+                     const Pose2& pose, std::vector<Match>* matched,
+                     std::vector<Match>* by_centre = nullptr) const;
   // Least-squares pose over the matches (see PreLocalizationOptions::refine).
   void Refine(const std::vector<ObservedObject>& observed, std::span<const Match> matched,
               Pose2* pose) const;
@@ -232,6 +239,7 @@ class PreLocalizer {
   // seen from an unknown side).
   std::vector<double> outline_radius_;
   std::vector<double> mean_behind_;
+  std::vector<std::vector<cv::Point2f>> outlines_;  // per object: its footprint, for OpenCV
   // Mapped pairs by classes (a, b), a <= b, at a * classes + b; sorted by distance.
   std::vector<std::vector<IndexedPair>> pairs_;
   mapping::MapImage occupancy_;

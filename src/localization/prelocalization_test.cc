@@ -318,11 +318,13 @@ TEST(PreLocalizerTest, LaserRefinementCorrectsTheObjectsPoseWithinItsLimits) {
   EXPECT_NEAR(error(localizer.Localize(observed, fits_truth, nullptr, 0, far)), 0.12, 0.01);
   EXPECT_NEAR(error(localizer.Localize(observed, fits_truth, nullptr, 0, turned)), 0.12, 0.01);
   EXPECT_NEAR(error(localizer.Localize(observed, fits_truth, nullptr, 0, worse)), 0.12, 0.01);
-  // Where the objects must lie within 5 cm of where a pose puts them, the truth no longer
-  // explains them (they are mapped 0.12 m off): the refinement is not taken.
+  // Where the objects' centres must lie within 5 cm of where a pose puts them, the truth no
+  // longer explains them (they are mapped 0.12 m off): the refinement is not taken. (By their
+  // outlines the surface points seen from the truth, 0.12 m from the shifted ones, may agree.)
   PreLocalizationOptions strict = options;
   strict.agreement_radius = 0.05;
   strict.agreement_per_metre = 0.0;
+  strict.agreement_by_outline = false;
   const PreLocalizer strict_localizer(map, FreeRoom(), strict);
   const auto kept = strict_localizer.Localize(observed, fits_truth, nullptr, 0, to_truth);
   ASSERT_FALSE(kept.empty());
@@ -333,6 +335,36 @@ TEST(PreLocalizerTest, LaserRefinementCorrectsTheObjectsPoseWithinItsLimits) {
   options.laser_refine = false;
   const PreLocalizer off(map, FreeRoom(), options);
   EXPECT_NEAR(error(off.Localize(observed, fits_truth, nullptr, 0, to_truth)), 0.12, 0.01);
+}
+
+// A sofa seen from close by at a slant: the ray through the box centre meets its surface near a
+// corner, far from the line to its centre, so the centre behind that surface point is off by more
+// than the agreement radius; the point itself lies on the mapped outline.
+TEST(PreLocalizerTest, ALargeObjectSeenAtASlantAgreesByItsOutline) {
+  semantic::SemanticObject sofa;
+  sofa.id = 1;
+  sofa.class_name = "sofa";
+  sofa.center = {5.0, 3.0};
+  sofa.footprint = {{6.0, 3.5}, {4.0, 3.5}, {4.0, 2.5}, {6.0, 2.5}};
+  semantic::SemanticMap map;
+  map.objects = {sofa};
+  const Pose2 pose(5.2, 1.9, 0.3);
+  ObservedObject seen;
+  seen.class_name = "sofa";
+  seen.surface = pose.Inverse() * Eigen::Vector2d(5.9, 2.5);  // on the outline, by a corner
+  seen.range = seen.surface.norm();
+  seen.bearing = std::atan2(seen.surface.y(), seen.surface.x());
+
+  PreLocalizationOptions options;
+  const PreLocalizer by_outline(map, FreeRoom(), options);
+  EXPECT_EQ(by_outline.Agreeing({seen}, pose), 1);
+  options.agreement_by_outline = false;
+  const PreLocalizer by_centre(map, FreeRoom(), options);
+  EXPECT_EQ(by_centre.Agreeing({seen}, pose), 0);
+  // Off the outline by more than the radius, neither agrees.
+  ObservedObject far = seen;
+  far.surface = pose.Inverse() * Eigen::Vector2d(5.9, 1.9);  // 0.6 m in front of the sofa
+  EXPECT_EQ(by_outline.Agreeing({far}, pose), 0);
 }
 
 }  // namespace
