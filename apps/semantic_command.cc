@@ -18,6 +18,7 @@
 #include "core/progress_bar.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
+#include "semantic/keyframe_selection.h"
 #include "semantic/semantic_run.h"
 
 namespace semchain::app {
@@ -73,8 +74,10 @@ Status RunSemantic(const SemanticArgs& args) {
   if (fs::weakly_canonical(out, error) != fs::weakly_canonical(map_dir, error)) {
     SEMCHAIN_RETURN_IF_ERROR(mapping::WriteMap(out / "map.yaml", *map));
   }
-  SEMCHAIN_RETURN_IF_ERROR(WriteSemanticOutputs(out, *map, *result, args.run, args.scale));
-  std::printf("%s\nwrote %s\n", SemanticSummary(*result).c_str(),
+  const semantic::KeyframeDatabase keyframes{fs::absolute(args.run).lexically_normal().string(),
+                                             semantic::SelectCoveringKeyframes(result->keyframes)};
+  SEMCHAIN_RETURN_IF_ERROR(WriteSemanticOutputs(out, *map, *result, keyframes, args.scale));
+  std::printf("%s\nwrote %s\n", SemanticSummary(*result, keyframes.keyframes.size()).c_str(),
               (out / "semantic.json").string().c_str());
   return Status::Ok();
 }

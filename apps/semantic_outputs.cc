@@ -7,7 +7,6 @@
 #include "apps/semantic_drawing.h"
 #include "detection/run_detection.h"
 #include "detection/yolo_detector.h"
-#include "semantic/keyframe_selection.h"
 #include "semantic/keyframes.h"
 #include "semantic/semantic_chain.h"
 #include "semantic/semantic_map_io.h"
@@ -88,16 +87,15 @@ Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
 }
 
 Status WriteSemanticOutputs(const fs::path& out, const mapping::MapImage& map,
-                            const semantic::SemanticMappingResult& result, const fs::path& run,
-                            double scale) {
-  const semantic::KeyframeDatabase keyframes{fs::absolute(run).lexically_normal().string(),
-                                             semantic::SelectCoveringKeyframes(result.keyframes)};
+                            const semantic::SemanticMappingResult& result,
+                            const semantic::KeyframeDatabase& keyframes, double scale) {
   SEMCHAIN_RETURN_IF_ERROR(semantic::WriteKeyframes(out / "keyframes.json", keyframes));
   SEMCHAIN_RETURN_IF_ERROR(WriteSemanticPng(map, result.map, scale, out / "semantic.png"));
   return semantic::WriteSemanticJson(out / "semantic.json", result.map);
 }
 
-std::string SemanticSummary(const semantic::SemanticMappingResult& result) {
+std::string SemanticSummary(const semantic::SemanticMappingResult& result,
+                            std::size_t keyframes_written) {
   std::size_t links = 0;
   for (const semantic::SemanticChain& chain : result.map.chains) links += chain.links.size();
   char text[256];
@@ -105,8 +103,7 @@ std::string SemanticSummary(const semantic::SemanticMappingResult& result) {
                 "%d frames, %d detections -> %zu objects, %zu chains (%zu links), %zu neighbour "
                 "links, %zu keyframes (of %zu frames with objects)",
                 result.frames, result.detections, result.map.objects.size(),
-                result.map.chains.size(), links, result.map.neighbours.size(),
-                semantic::SelectCoveringKeyframes(result.keyframes).size(),
+                result.map.chains.size(), links, result.map.neighbours.size(), keyframes_written,
                 result.keyframes.size());
   return text;
 }

@@ -42,13 +42,16 @@ Result<std::vector<FrameDetections>> DetectWithModel(const DetectorArgs& args,
 Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
                         double scale, const std::filesystem::path& path);
 
-// Writes OUT/keyframes.json, OUT/semantic.png (over 'map', 'scale' pixels per metre) and
-// OUT/semantic.json, each atomically, semantic.json last.
+// Writes OUT/keyframes.json ('keyframes', e.g. the covering subset of result.keyframes),
+// OUT/semantic.png (over 'map', 'scale' pixels per metre) and OUT/semantic.json, each
+// atomically, semantic.json last.
 Status WriteSemanticOutputs(const std::filesystem::path& out, const mapping::MapImage& map,
                             const semantic::SemanticMappingResult& result,
-                            const std::filesystem::path& run, double scale);
+                            const semantic::KeyframeDatabase& keyframes, double scale);
 
-// "N frames, M detections -> ... keyframes" for the console.
-std::string SemanticSummary(const semantic::SemanticMappingResult& result);
+// "N frames, M detections -> ... K keyframes (of F frames with objects)" for the console, K the
+// keyframes written.
+std::string SemanticSummary(const semantic::SemanticMappingResult& result,
+                            std::size_t keyframes_written);
 
 }  // namespace semchain::app

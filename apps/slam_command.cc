@@ -114,9 +114,8 @@ Status WriteOutputs(const std::filesystem::path& out, const mapping::SlamResult&
                     const std::optional<mapping::DepthFusionResult>& depth,
                     const std::string& statistics, const mapping::MapImage& map,
                     const SlamSemantic* semantic,
-                    const std::optional<semantic::LiveSemanticResult>& live) {
-  std::optional<semantic::KeyframeDatabase> keyframes;
-  if (live) keyframes = semantic->Keyframes(*live);
+                    const std::optional<semantic::LiveSemanticResult>& live,
+                    const std::optional<semantic::KeyframeDatabase>& keyframes) {
   const semantic::MapFolderContents contents{map, result.trajectory,
                                              live ? &live->mapping.map : nullptr,
                                              keyframes ? &*keyframes : nullptr};
@@ -202,12 +201,15 @@ int RunSlamCommand(const SlamArgs& args) {
     if (!finished.ok()) return ReportError(finished.status());
     live = std::move(*finished);
   }
+  std::optional<semantic::KeyframeDatabase> keyframes;
+  if (live) keyframes = semantic->Keyframes(*live);
   const Status written =
       WriteOutputs(args.out, result, depth, StatisticsJson(result, *options, seconds), map,
-                   semantic.get(), live);
+                   semantic.get(), live, keyframes);
   if (!written.ok()) return ReportError(written);
   if (live) {
-    std::printf("%s\nwrote %s\n", SemanticSummary(live->mapping).c_str(),
+    std::printf("%s\nwrote %s\n",
+                SemanticSummary(live->mapping, keyframes->keyframes.size()).c_str(),
                 (std::filesystem::path(args.out) / "semantic.json").string().c_str());
   }
   spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",

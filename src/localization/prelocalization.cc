@@ -390,6 +390,13 @@ void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
   }
 }
 
+std::vector<std::pair<int, int>> PreLocalizer::MatchIds(std::span<const Match> matched) const {
+  std::vector<std::pair<int, int>> ids;
+  ids.reserve(matched.size());
+  for (const auto& [k, o] : matched) ids.emplace_back(k, objects_[static_cast<std::size_t>(o)].id);
+  return ids;
+}
+
 int PreLocalizer::Agreeing(const std::vector<ObservedObject>& observed, const Pose2& pose) const {
   std::vector<Match> matched;
   MatchAgreeing(observed, ClassesOf(observed), pose, &matched);
@@ -531,11 +538,8 @@ void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
       MatchAgreeing(observed, classes, candidate.pose, &matched);
     }
     candidate.agreeing = static_cast<int>(matched.size());
-    candidate.matches.clear();
     if (candidate.agreeing < min_agreeing) continue;  // dropped below
-    for (const auto& [k, o] : matched) {
-      candidate.matches.emplace_back(k, objects_[static_cast<std::size_t>(o)].id);
-    }
+    candidate.matches = MatchIds(matched);
   }
   std::erase_if(*candidates,
                 [min_agreeing](const PoseCandidate& c) { return c.agreeing < min_agreeing; });
@@ -589,10 +593,7 @@ void PreLocalizer::RefineOneByLaser(const std::vector<ObservedObject>& observed,
   candidate->pose = refined;
   candidate->laser_score = score;
   candidate->agreeing = static_cast<int>(matched.size());
-  candidate->matches.clear();
-  for (const auto& [k, o] : matched) {
-    candidate->matches.emplace_back(k, objects_[static_cast<std::size_t>(o)].id);
-  }
+  candidate->matches = MatchIds(matched);
 }
 
 std::vector<PoseCandidate> PreLocalizer::RefineByLaser(

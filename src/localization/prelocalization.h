@@ -220,6 +220,8 @@ class PreLocalizer {
   void MatchAgreeing(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
                      const Pose2& pose, std::vector<Match>* matched,
                      std::vector<Match>* by_centre = nullptr) const;
+  // The matches as PoseCandidate::matches names them: (observed index, mapped object id).
+  std::vector<std::pair<int, int>> MatchIds(std::span<const Match> matched) const;
   // Least-squares pose over the matches (see PreLocalizationOptions::refine).
   void Refine(const std::vector<ObservedObject>& observed, std::span<const Match> matched,
               Pose2* pose) const;
