@@ -121,10 +121,17 @@ TEST(RelocMethodsTest, ParticleSnapshotsChangeNothingAndShrink) {
       EXPECT_LT(snapshots[i - 1].scan, snapshots[i].scan);
     }
   }
-  // One snapshot follows the seeding by pre-localization, and the last is the last update.
+  // One snapshot is of the first filter update at or after the pre-localization the method
+  // accepted, and the last is the last update.
   ASSERT_GE(recorded.prelocalization_scan, 0);
+  const auto updated_at = [&](std::size_t k) {
+    return recorded.iterations[k] > (k > 0 ? recorded.iterations[k - 1] : 0);
+  };
+  std::size_t first_update = static_cast<std::size_t>(recorded.prelocalization_scan);
+  while (first_update < recorded.iterations.size() && !updated_at(first_update)) ++first_update;
+  ASSERT_LT(first_update, recorded.iterations.size());
   EXPECT_TRUE(std::any_of(snapshots.begin(), snapshots.end(),
-                          [&](const auto& s) { return s.scan == recorded.prelocalization_scan; }));
+                          [&](const auto& s) { return s.scan == static_cast<int>(first_update); }));
   // semantic-amcl counts filter updates: the last is where the count last went up.
   const auto last_update =
       std::find(recorded.iterations.begin(), recorded.iterations.end(), recorded.iterations.back());

@@ -172,6 +172,8 @@ void Localizer::RelocalizeGlobally() {
   filter_pose_.reset();
   seeded_ = false;
   undecided_ = false;
+  decision_.reset();
+  decision_streak_ = 0;
   if (IsScanMatcherMethod(method_)) {
     ResetSearch();
   } else {
@@ -186,6 +188,8 @@ void Localizer::ResetSearch() {
   turned_ = 0.0;
   single_object_tried_ = false;
   undecided_ = false;
+  decision_.reset();
+  decision_streak_ = 0;
 }
 
 Eigen::Matrix3d Localizer::covariance() const {
@@ -250,8 +254,21 @@ void Localizer::NoteAccepted(const PoseCandidate& candidate) {
   if (!statistics_.first_prelocalization) statistics_.first_prelocalization = candidate.pose;
 }
 
-bool Localizer::NoteDecided(const std::vector<PoseCandidate>& candidates) {
-  undecided_ = !map_.prelocalizer.Decided(candidates);
+bool Localizer::NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry) {
+  bool decided = map_.prelocalizer.Decided(candidates);
+  if (decided) {
+    const Pose2& best = candidates.front().pose;
+    const bool same_place =
+        decision_ && !map_.prelocalizer.DistinctPlaces(
+                         decision_->first * decision_->second.Between(odometry), best);
+    decision_streak_ = same_place ? decision_streak_ + 1 : 1;
+    decision_.emplace(best, odometry);
+    decided = decision_streak_ >= options_.decision_confirmations;
+  } else {
+    decision_.reset();
+    decision_streak_ = 0;
+  }
+  undecided_ = !decided;
   if (undecided_) ++statistics_.undecided_prelocalizations;
   return !undecided_;
 }
@@ -364,7 +381,7 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
       NoteHypotheses(candidates);
     }
     if (!candidates.empty()) {
-      const bool decided = NoteDecided(candidates);
+      const bool decided = NoteDecided(candidates, scan.odometry);
       if (decided) NoteAccepted(candidates.front());
       // A filter that converged on a look-alike place while the objects did not tell the
       // places apart is moved once they do.
@@ -490,7 +507,7 @@ std::optional<RelocalizationResult> Localizer::Relocalize(const StampedScan& sca
   }
   const bool full_turn = FullTurn();
   if (!candidates.empty()) {
-    if (!NoteDecided(candidates) && !full_turn) {
+    if (!NoteDecided(candidates, scan.odometry) && !full_turn) {
       // Not sure yet: a look-alike place explains the objects seen as well; the turn goes on
       // and shows more of them. After a full turn everything around has been seen, and the best
       // match is taken (the lock re-check corrects it should later objects rule it out).

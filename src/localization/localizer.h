@@ -108,6 +108,11 @@ struct LocalizerOptions {
   // can be a confused class or a partial view); a lock moves for fewer only when the laser also
   // fits the other place better.
   int relocate_margin = 2;
+  // Pre-localization decides between look-alike places only when this many pre-localizations in
+  // a row put the best hypothesis at the same place (carried by odometry): a single frame can
+  // leave the right place out — its pair placed too far off for the laser to confirm it — and
+  // then a look-alike place stands alone. 1: every pre-localization decides on its own.
+  int decision_confirmations = 2;
   // Seeds the filter's random stream.
   std::uint64_t seed = 1;
 };
@@ -204,7 +209,7 @@ class Localizer {
   void StartTracking(const Pose2& odometry, const Pose2& pose);
   bool RecheckLock(const StampedScan& scan, const LocalizerFrame& frame);
   // Notes whether 'candidates' decide between look-alike places; returns it.
-  bool NoteDecided(const std::vector<PoseCandidate>& candidates);
+  bool NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry);
   // semantic-amcl: whether the filter sits on a look-alike place that 'candidates' (decided)
   // rule out: they put the robot elsewhere and explain more of the objects seen.
   bool LockedOnLookAlike(const StampedScan& scan, const std::vector<ObservedObject>& observed,
@@ -238,6 +243,9 @@ class Localizer {
   bool single_object_tried_ = false;
   // The latest pre-localization left look-alike places (PreLocalizer::Decided).
   bool undecided_ = false;
+  // The place the latest pre-localizations decided on, the odometry then, and how many in a row.
+  std::optional<std::pair<Pose2, Pose2>> decision_;
+  int decision_streak_ = 0;
   // The latest pre-localization and the odometry when it was made.
   std::optional<std::vector<PoseHypothesis>> prior_;
   Pose2 prior_odometry_;

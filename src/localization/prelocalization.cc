@@ -58,7 +58,8 @@ bool PreLocalizationOptions::Validate(std::string* error) const {
     return false;
   }
   if (!(heading_agreement > 0.0) || !(agreement_radius > 0.0) || max_hypotheses < 1 ||
-      !(position_std_base > 0.0) || !(heading_std > 0.0) || clearance < 0.0) {
+      !(position_std_base > 0.0) || !(heading_std > 0.0) || clearance < 0.0 ||
+      !(centre_std_base > 0.0)) {
     *error = "tolerances, standard deviations and max_hypotheses must be positive";
     return false;
   }
@@ -286,9 +287,18 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
   const int count = IntersectCircles(
       oa.center, centre_in_robot(si, mean_behind_[static_cast<std::size_t>(a)]).norm(), ob.center,
       centre_in_robot(sj, mean_behind_[static_cast<std::size_t>(b)]).norm(), slack, points);
-  // |h_i − h_j| ≤ heading_agreement is cos(h_i − h_j) ≥ cos(heading_agreement).
-  const double min_heading_cosine =
-      options_.heading_agreement >= kPi ? -2.0 : std::cos(options_.heading_agreement);
+  const double sigma =
+      options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
+  // A position off by sigma turns the bearing of an object at range r by up to sigma / r: the
+  // headings the two bearings give may differ by that much more (a door half a metre away
+  // moves by a third of a radian for 0.15 m). |h_i − h_j| ≤ tolerance is
+  // cos(h_i − h_j) ≥ cos(tolerance).
+  const double heading_tolerance =
+      options_.heading_agreement +
+      (options_.heading_agreement_by_range
+           ? sigma * (1.0 / std::max(si.range, sigma) + 1.0 / std::max(sj.range, sigma))
+           : 0.0);
+  const double min_heading_cosine = heading_tolerance >= kPi ? -2.0 : std::cos(heading_tolerance);
   for (int k = 0; k < count; ++k) {
     // Refine with the depth behind the surface seen from this position (a fixed point: the
     // depth depends on the direction, the direction on the position).
@@ -328,8 +338,6 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
     // Free space first: one cell read.
     if (!InFreeSpace(candidate.pose.translation())) continue;
     if (!headings_agree(candidate.pose.translation())) continue;
-    const double sigma =
-        options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
     candidate.covariance =
         Eigen::Vector3d(sigma * sigma, sigma * sigma, options_.heading_std * options_.heading_std)
             .asDiagonal();
@@ -414,9 +422,18 @@ std::vector<PoseCandidate> PreLocalizer::Localize(
     return only == nullptr || std::find(only->begin(), only->end(), id) != only->end();
   };
   const std::vector<int> classes = ClassesOf(observed);
+  // A place that explains at least min_agreeing of the n objects explains at least two of any
+  // n − min_agreeing + 2 of them (pigeonhole), and a pair of those gives its hypothesis: pairs
+  // among the first that many (the newest: least odometry error), and one more in case a pair's
+  // geometry fails, find it. A lock re-check asks for more than the tracked pose explains, often
+  // all but one or two of a dozen objects, and pairs only among four of them.
+  const std::size_t n = observed.size();
+  const std::size_t pairing = min_agreeing >= 2 && options_.pair_only_as_needed
+                                  ? std::min(n, n - static_cast<std::size_t>(min_agreeing) + 3)
+                                  : n;
   std::vector<PoseCandidate> candidates;
-  for (std::size_t i = 0; i < observed.size(); ++i) {
-    for (std::size_t j = i + 1; j < observed.size(); ++j) {
+  for (std::size_t i = 0; i < pairing; ++i) {
+    for (std::size_t j = i + 1; j < pairing; ++j) {
       const double d = (observed[i].surface - observed[j].surface).norm();
       ForEachPair(classes[i], classes[j], d, [&](int a, int b, double) {
         if (!allowed(a) || !allowed(b)) return;
@@ -484,6 +501,17 @@ std::vector<PoseCandidate> PreLocalizer::LocalizeSingle(
                        BestDistinct(std::move(candidates)));
 }
 
+// The centre a surface point implies is off by up to the object's extent where the box's centre
+// ray misses the centre (a table or sofa seen from close by, at a slant, or only in part), and
+// the mapped centre is the mean of such views: each object counts by the inverse of that
+// variance, so that a table does not pull a pose that a computer and a cabinet agree on.
+double PreLocalizer::AlignmentWeight(int object) const {
+  if (!options_.weight_by_extent) return 1.0;
+  const double extent = outline_radius_[static_cast<std::size_t>(object)];
+  const double base = options_.centre_std_base;
+  return 1.0 / (base * base + extent * extent);
+}
+
 void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
                           std::span<const Match> matched, Pose2* pose) const {
   if (matched.size() < 2) return;
@@ -495,18 +523,20 @@ void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
   Eigen::Vector2d mapped_sum = Eigen::Vector2d::Zero();
   double cross = 0.0;
   double dot = 0.0;
+  double n = 0.0;  // the sum of the weights
   for (const auto& [k, o] : matched) {
     const ObservedObject& s = observed[static_cast<std::size_t>(k)];
     const semantic::SemanticObject& object = objects_[static_cast<std::size_t>(o)];
     const Eigen::Vector2d world_ray = Unit(object.center - pose->translation());
     const Eigen::Vector2d seen =
         s.surface + CenterBehindSurface(object, -world_ray) * Unit(s.surface);
-    seen_sum += seen;
-    mapped_sum += object.center;
-    cross += seen.x() * object.center.y() - seen.y() * object.center.x();
-    dot += seen.dot(object.center);
+    const double w = AlignmentWeight(o);
+    seen_sum += w * seen;
+    mapped_sum += w * object.center;
+    cross += w * (seen.x() * object.center.y() - seen.y() * object.center.x());
+    dot += w * seen.dot(object.center);
+    n += w;
   }
-  const double n = static_cast<double>(matched.size());
   const Eigen::Vector2d seen_mean = seen_sum / n;
   const Eigen::Vector2d mapped_mean = mapped_sum / n;
   cross -= n * (seen_mean.x() * mapped_mean.y() - seen_mean.y() * mapped_mean.x());
@@ -560,10 +590,29 @@ void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
     // the laser before it is judged (refining every candidate would cost a Ceres solve for each
     // of what may be hundreds).
     const int worth_refining = most_agreeing_passing >= 0 ? most_agreeing_passing : most_agreeing;
-    for (PoseCandidate& candidate : *candidates) {
-      if (candidate.laser_score < min_laser_score && candidate.agreeing >= worth_refining) {
-        RefineOneByLaser(observed, classes, laser_score, laser_refine, &candidate);
-      }
+    // Several pairs give hypotheses at one place, and BestDistinct keeps one of them: refine only
+    // the best-fitting hypothesis per place (a Ceres solve each; a dozen look-alike offices give
+    // dozens of them per frame), and none where one passing the cut explains as many objects.
+    std::vector<std::size_t> order;
+    for (std::size_t k = 0; k < candidates->size(); ++k) {
+      const PoseCandidate& c = (*candidates)[k];
+      if (c.laser_score < min_laser_score && c.agreeing >= worth_refining) order.push_back(k);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      return (*candidates)[x].laser_score > (*candidates)[y].laser_score;
+    });
+    std::vector<const PoseCandidate*> places;
+    for (const PoseCandidate& c : *candidates) {
+      if (c.laser_score >= min_laser_score) places.push_back(&c);
+    }
+    for (const std::size_t k : order) {
+      PoseCandidate& candidate = (*candidates)[k];
+      const bool placed = std::any_of(places.begin(), places.end(), [&](const PoseCandidate* p) {
+        return p->agreeing >= candidate.agreeing && SamePlace(p->pose, candidate.pose);
+      });
+      if (placed) continue;
+      RefineOneByLaser(observed, classes, laser_score, laser_refine, &candidate);
+      places.push_back(&candidate);
     }
     std::erase_if(*candidates, [min_laser_score](const PoseCandidate& c) {
       return c.laser_score < min_laser_score;
@@ -609,6 +658,11 @@ std::vector<PoseCandidate> PreLocalizer::RefineByLaser(
   return BestDistinct(std::move(candidates));
 }
 
+bool PreLocalizer::SamePlace(const Pose2& a, const Pose2& b) const {
+  return (a.translation() - b.translation()).norm() < options_.merge_distance &&
+         std::abs(NormalizeAngle(a.theta - b.theta)) < options_.merge_heading;
+}
+
 bool PreLocalizer::DistinctPlaces(const Pose2& a, const Pose2& b) const {
   return (a.translation() - b.translation()).norm() > options_.distinct_place_distance ||
          std::abs(NormalizeAngle(a.theta - b.theta)) > options_.distinct_place_heading;
@@ -634,9 +688,7 @@ std::vector<PoseCandidate> PreLocalizer::BestDistinct(std::vector<PoseCandidate>
   std::vector<PoseCandidate> kept;
   for (const PoseCandidate& candidate : candidates) {
     const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const PoseCandidate& k) {
-      return (k.pose.translation() - candidate.pose.translation()).norm() <
-                 options_.merge_distance &&
-             std::abs(NormalizeAngle(k.pose.theta - candidate.pose.theta)) < options_.merge_heading;
+      return SamePlace(k.pose, candidate.pose);
     });
     if (!duplicate) kept.push_back(candidate);
     if (static_cast<int>(kept.size()) >= options_.max_hypotheses) break;

@@ -42,6 +42,17 @@ semantic::SemanticObject Square(int id, const std::string& class_name, double x,
   return object;
 }
 
+semantic::SemanticObject Outlined(int id, const std::string& class_name,
+                                  const Eigen::Vector2d& center,
+                                  std::vector<Eigen::Vector2d> footprint) {
+  semantic::SemanticObject object;
+  object.id = id;
+  object.class_name = class_name;
+  object.center = center;
+  object.footprint = std::move(footprint);
+  return object;
+}
+
 // A free 10 m × 6 m room.
 mapping::MapImage FreeRoom() {
   mapping::MapImage map;
@@ -310,8 +321,8 @@ TEST(PreLocalizerTest, LaserRefinementCorrectsTheObjectsPoseWithinItsLimits) {
 
   // A refinement that slides beyond laser_refine_max_shift (along a corridor, into the next
   // room), turns beyond laser_refine_max_turn or fits the scan worse is not taken.
-  const auto far = [](const Pose2& pose) { return Pose2(pose.x + 0.5, pose.y, pose.theta); };
-  const auto turned = [](const Pose2& pose) { return Pose2(pose.x, pose.y, pose.theta + 0.3); };
+  const auto far = [](const Pose2& pose) { return Pose2(pose.x + 0.6, pose.y, pose.theta); };
+  const auto turned = [](const Pose2& pose) { return Pose2(pose.x, pose.y, pose.theta + 0.4); };
   const auto worse = [&truth](const Pose2& pose) {
     return Pose2(pose.x + (pose.x - truth.x), pose.y, pose.theta);
   };
@@ -341,13 +352,8 @@ TEST(PreLocalizerTest, LaserRefinementCorrectsTheObjectsPoseWithinItsLimits) {
 // corner, far from the line to its centre, so the centre behind that surface point is off by more
 // than the agreement radius; the point itself lies on the mapped outline.
 TEST(PreLocalizerTest, ALargeObjectSeenAtASlantAgreesByItsOutline) {
-  semantic::SemanticObject sofa;
-  sofa.id = 1;
-  sofa.class_name = "sofa";
-  sofa.center = {5.0, 3.0};
-  sofa.footprint = {{6.0, 3.5}, {4.0, 3.5}, {4.0, 2.5}, {6.0, 2.5}};
   semantic::SemanticMap map;
-  map.objects = {sofa};
+  map.objects = {Outlined(1, "sofa", {5.0, 3.0}, {{6.0, 3.5}, {4.0, 3.5}, {4.0, 2.5}, {6.0, 2.5}})};
   const Pose2 pose(5.2, 1.9, 0.3);
   ObservedObject seen;
   seen.class_name = "sofa";
@@ -365,6 +371,104 @@ TEST(PreLocalizerTest, ALargeObjectSeenAtASlantAgreesByItsOutline) {
   ObservedObject far = seen;
   far.surface = pose.Inverse() * Eigen::Vector2d(5.9, 1.9);  // 0.6 m in front of the sofa
   EXPECT_EQ(by_outline.Agreeing({far}, pose), 0);
+}
+
+// A table seen from 3 m whose box-centre ray meets it 0.3 m to the side of its centre (a partial
+// view): the centre it implies is off by that much, still within the agreement radius, so the
+// table steers the alignment. A computer and a cabinet in view place the robot exactly; weighted
+// by their extents the alignment stays with them, unweighted the table pulls it off.
+TEST(PreLocalizerTest, ALargeObjectsCentrePullsTheAlignmentLessThanSmallOnes) {
+  semantic::SemanticMap map;
+  map.objects = {
+      Square(1, "computer", 3.5, 2.8, 0.15), Square(2, "cabinet", 5.5, 1.2, 0.2),
+      Outlined(3, "table", {4.5, 4.2}, {{5.3, 4.6}, {3.7, 4.6}, {3.7, 3.8}, {5.3, 3.8}})};
+  const Pose2 truth(2.0, 1.0, 0.3);
+  std::vector<ObservedObject> observed = {See(truth, map.objects[0]), See(truth, map.objects[1]),
+                                          See(truth, map.objects[2])};
+  // The table's surface point slid 0.3 m along its near edge (y = 3.8 in the world).
+  ObservedObject& seen_table = observed[2];
+  seen_table.surface = truth.Inverse() * (truth * seen_table.surface + Eigen::Vector2d(0.3, 0.0));
+  seen_table.range = seen_table.surface.norm();
+  seen_table.bearing = std::atan2(seen_table.surface.y(), seen_table.surface.x());
+  const auto error = [&truth](const std::vector<PoseCandidate>& hypotheses) {
+    return (hypotheses.front().pose.translation() - truth.translation()).norm();
+  };
+
+  PreLocalizationOptions options;
+  const PreLocalizer weighted(map, FreeRoom(), options);
+  const auto by_extent = weighted.Localize(observed);
+  ASSERT_FALSE(by_extent.empty());
+  EXPECT_EQ(by_extent.front().agreeing, 3);
+  options.weight_by_extent = false;
+  const PreLocalizer unweighted(map, FreeRoom(), options);
+  const auto alike = unweighted.Localize(observed);
+  ASSERT_FALSE(alike.empty());
+  EXPECT_EQ(alike.front().agreeing, 3);
+  EXPECT_LT(error(by_extent), 0.05);
+  EXPECT_GT(error(alike), 0.12);
+  EXPECT_LT(error(by_extent), 0.3 * error(alike));
+}
+
+// office_floor seed 5 (a development seed), trial 23, 2.4 s into the turn: a stool 2.75 m away
+// and a door 0.52 m away, seen at a slant (the door's mapped outline and the stool's, moved by
+// (−12, −2) m). The right pair places the robot 0.2 m off, where the headings the two bearings
+// give differ by more than heading_agreement (0.2 rad): a bearing at half a metre turns by
+// 0.4 rad per 0.2 m. Widened by what the hypothesis' position uncertainty does to bearings at
+// that range, the tolerance lets the pair give the pose (the laser refinement then corrects it);
+// without, there was no hypothesis here, and a look-alike office whose pair happened to fit
+// stood alone.
+TEST(PreLocalizerTest, HeadingAgreementWidensForObjectsSeenAtCloseRange) {
+  semantic::SemanticMap map;
+  map.objects = {Outlined(2, "door", {5.042, 3.500},
+                          {{5.063, 3.086}, {5.071, 3.914}, {5.021, 3.914}, {5.013, 3.087}}),
+                 Square(48, "stool", 2.091, 3.580, 0.127)};
+  const auto seen = [](const std::string& name, double range, double bearing) {
+    ObservedObject object;
+    object.class_name = name;
+    object.range = range;
+    object.bearing = bearing;
+    object.surface = range * Eigen::Vector2d(std::cos(bearing), std::sin(bearing));
+    return object;
+  };
+  const std::vector<ObservedObject> observed = {seen("stool", 2.75, 0.498),
+                                                seen("door", 0.52, -1.364)};
+  const Pose2 truth(4.724, 2.835, 2.239);
+
+  PreLocalizationOptions options;
+  const PreLocalizer by_range(map, FreeRoom(), options);
+  const auto found = by_range.Localize(observed);
+  ASSERT_FALSE(found.empty());
+  EXPECT_LT((found.front().pose.translation() - truth.translation()).norm(), 0.25);
+  EXPECT_LT(std::abs(NormalizeAngle(found.front().pose.theta - truth.theta)), 0.25);
+  EXPECT_EQ(found.front().agreeing, 2);
+  options.heading_agreement_by_range = false;
+  const PreLocalizer fixed(map, FreeRoom(), options);
+  EXPECT_TRUE(fixed.Localize(observed).empty());
+}
+
+// A lock re-check asks for places explaining more objects than the tracked pose: pairs among
+// only as many of the objects as that needs (pigeonhole) find the same place as all pairs.
+TEST(PreLocalizerTest, PairsOnlyAsNeededFindThePlaceExplainingTheMost) {
+  semantic::SemanticMap map;
+  map.objects = {Square(1, "cabinet", 3.0, 5.0, 0.2), Square(2, "bucket", 5.0, 5.2, 0.15),
+                 Square(3, "chair", 7.0, 4.5, 0.25),  Square(4, "stool", 8.0, 2.0, 0.15),
+                 Square(5, "plant", 6.5, 0.8, 0.2),   Square(6, "clock", 1.0, 3.0, 0.1)};
+  const Pose2 truth(4.5, 2.5, 0.4);
+  std::vector<ObservedObject> observed;
+  for (const semantic::SemanticObject& object : map.objects) observed.push_back(See(truth, object));
+  PreLocalizationOptions options;
+  const PreLocalizer as_needed(map, FreeRoom(), options);
+  options.pair_only_as_needed = false;
+  const PreLocalizer all_pairs(map, FreeRoom(), options);
+  for (const int min_agreeing : {4, 5, 6}) {
+    const auto some = as_needed.Localize(observed, {}, nullptr, min_agreeing);
+    const auto all = all_pairs.Localize(observed, {}, nullptr, min_agreeing);
+    ASSERT_FALSE(some.empty()) << min_agreeing;
+    ASSERT_FALSE(all.empty()) << min_agreeing;
+    EXPECT_EQ(some.front().agreeing, 6);
+    EXPECT_LT((some.front().pose.translation() - truth.translation()).norm(), 1e-3);
+    EXPECT_LT((all.front().pose.translation() - truth.translation()).norm(), 1e-3);
+  }
 }
 
 }  // namespace
