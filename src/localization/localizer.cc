@@ -114,7 +114,10 @@ Localizer::Localizer(const LocalizerMap& map, LocalizationMethod method,
       method_(method),
       options_(options),
       amcl_(map.localization, map.amcl_options, MakeRng(options.seed, 1)),
-      memory_(options.memory) {
+      memory_(options.memory),
+      decision_gate_(map.prelocalizer,
+                     {options.decision_confirmations, options.decide_on_new_evidence,
+                      options.memory.max_travel}) {
   if (!IsScanMatcherMethod(method_)) amcl_.InitializeGlobal();
 }
 
@@ -147,6 +150,7 @@ void Localizer::SetInitialPose(const Pose2& pose, const Eigen::Matrix3d& covaria
   }
   const Pose2 odometry = *last_odometry_;
   memory_.Clear();
+  decision_gate_.Reset();
   prior_.reset();
   amcl_.ClearPosePrior();
   if (IsScanMatcherMethod(method_)) {
@@ -172,8 +176,7 @@ void Localizer::RelocalizeGlobally() {
   filter_pose_.reset();
   seeded_ = false;
   undecided_ = false;
-  decision_.reset();
-  decision_streak_ = 0;
+  decision_gate_.Reset();
   if (IsScanMatcherMethod(method_)) {
     ResetSearch();
   } else {
@@ -188,8 +191,7 @@ void Localizer::ResetSearch() {
   turned_ = 0.0;
   single_object_tried_ = false;
   undecided_ = false;
-  decision_.reset();
-  decision_streak_ = 0;
+  decision_gate_.Reset();
 }
 
 Eigen::Matrix3d Localizer::covariance() const {
@@ -254,21 +256,9 @@ void Localizer::NoteAccepted(const PoseCandidate& candidate) {
   if (!statistics_.first_prelocalization) statistics_.first_prelocalization = candidate.pose;
 }
 
-bool Localizer::NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry) {
-  bool decided = map_.prelocalizer.Decided(candidates);
-  if (decided) {
-    const Pose2& best = candidates.front().pose;
-    const bool same_place =
-        decision_ && !map_.prelocalizer.DistinctPlaces(
-                         decision_->first * decision_->second.Between(odometry), best);
-    decision_streak_ = same_place ? decision_streak_ + 1 : 1;
-    decision_.emplace(best, odometry);
-    decided = decision_streak_ >= options_.decision_confirmations;
-  } else {
-    decision_.reset();
-    decision_streak_ = 0;
-  }
-  undecided_ = !decided;
+bool Localizer::NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry,
+                            int hidden_objects) {
+  undecided_ = !decision_gate_.Update(candidates, odometry, hidden_objects);
   if (undecided_) ++statistics_.undecided_prelocalizations;
   return !undecided_;
 }
@@ -367,6 +357,7 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
     const std::vector<ObservedObject> observed = Observe(scan, *frame);
     const bool bow = method_ == LocalizationMethod::kSemanticAmclBow;
     std::vector<PoseCandidate> candidates = PreLocalize(scan, observed, 0, !bow);
+    int hidden_objects = 0;
     if (bow) {
       // Seed 000 §3.1 step 3: where the objects in view do not place the robot — no mapped pair
       // among them, or look-alike places that explain them alike (an object that would tell
@@ -377,11 +368,12 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
       if (!hidden.empty() &&
           (candidates.empty() || hidden.front().agreeing >= candidates.front().agreeing)) {
         candidates = std::move(hidden);
+        hidden_objects = 1;
       }
       NoteHypotheses(candidates);
     }
     if (!candidates.empty()) {
-      const bool decided = NoteDecided(candidates, scan.odometry);
+      const bool decided = NoteDecided(candidates, scan.odometry, hidden_objects);
       if (decided) NoteAccepted(candidates.front());
       // A filter that converged on a look-alike place while the objects did not tell the
       // places apart is moved once they do.

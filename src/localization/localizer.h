@@ -15,6 +15,7 @@
 #include "bow/keyframe_recognizer.h"
 #include "core/pose2.h"
 #include "localization/amcl.h"
+#include "localization/decision_gate.h"
 #include "localization/localization_map.h"
 #include "localization/observation_memory.h"
 #include "localization/prelocalization.h"
@@ -108,11 +109,12 @@ struct LocalizerOptions {
   // can be a confused class or a partial view); a lock moves for fewer only when the laser also
   // fits the other place better.
   int relocate_margin = 2;
-  // Pre-localization decides between look-alike places only when this many pre-localizations in
-  // a row put the best hypothesis at the same place (carried by odometry): a single frame can
-  // leave the right place out — its pair placed too far off for the laser to confirm it — and
-  // then a look-alike place stands alone. 1: every pre-localization decides on its own.
+  // When pre-localization decides between look-alike places (DecisionGate): the same place
+  // standing out in this many pre-localizations in a row, and — after look-alike places were
+  // left undecided with k objects explained — explaining more than k (forgotten after
+  // memory.max_travel). 1 and false: every pre-localization decides on its own.
   int decision_confirmations = 2;
+  bool decide_on_new_evidence = true;
   // Seeds the filter's random stream.
   std::uint64_t seed = 1;
 };
@@ -209,7 +211,8 @@ class Localizer {
   void StartTracking(const Pose2& odometry, const Pose2& pose);
   bool RecheckLock(const StampedScan& scan, const LocalizerFrame& frame);
   // Notes whether 'candidates' decide between look-alike places; returns it.
-  bool NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry);
+  bool NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry,
+                   int hidden_objects = 0);
   // semantic-amcl: whether the filter sits on a look-alike place that 'candidates' (decided)
   // rule out: they put the robot elsewhere and explain more of the objects seen.
   bool LockedOnLookAlike(const StampedScan& scan, const std::vector<ObservedObject>& observed,
@@ -243,9 +246,7 @@ class Localizer {
   bool single_object_tried_ = false;
   // The latest pre-localization left look-alike places (PreLocalizer::Decided).
   bool undecided_ = false;
-  // The place the latest pre-localizations decided on, the odometry then, and how many in a row.
-  std::optional<std::pair<Pose2, Pose2>> decision_;
-  int decision_streak_ = 0;
+  DecisionGate decision_gate_;
   // The latest pre-localization and the odometry when it was made.
   std::optional<std::vector<PoseHypothesis>> prior_;
   Pose2 prior_odometry_;

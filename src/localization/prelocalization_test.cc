@@ -178,7 +178,7 @@ TEST(PreLocalizerTest, LookAlikePlacesLeaveItUndecidedUntilAnObjectTellsThemApar
   EXPECT_FALSE(localizer.Decided(pair));
   // ...one that fits room B by more than the margin can.
   const auto fits_b = [&](const Pose2& pose) {
-    return (pose.translation() - truth.translation()).norm() < 0.5 ? 0.8 : 0.65;
+    return (pose.translation() - truth.translation()).norm() < 0.5 ? 0.8 : 0.5;
   };
   const std::vector<PoseCandidate> by_laser = localizer.Localize(seen, fits_b);
   ASSERT_FALSE(by_laser.empty());

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "core/pose2.h"
+#include "localization/prelocalization.h"
+
+// When a pre-localization may decide between look-alike places (issue 22's "not sure yet").
+// PreLocalizer::Decided judges one pre-localization: the best hypothesis stands out among those
+// it kept. Over a turn that is not enough on a floor of look-alike offices: a frame can leave the
+// right office out — its pair placed too far off for the laser to confirm it — and then a
+// look-alike office stands alone. The gate asks more:
+//  - the same place must stand out in 'confirmations' pre-localizations in a row (carried from
+//    one to the next by odometry);
+//  - once look-alike places were left undecided with k objects explained, the best place must
+//    explain more than k: the objects that could not separate them cannot separate them later.
+//    That tie is forgotten once the robot has moved 'forget_after_travel' metres (the observation
+//    memory's horizon).
+namespace semchain::localization {
+
+struct DecisionGateOptions {
+  int confirmations = 2;  // 1: each pre-localization decides on its own
+  bool new_evidence = true;
+  double forget_after_travel = 1.0;
+};
+
+class DecisionGate {
+ public:
+  DecisionGate(const PreLocalizer& prelocalizer, const DecisionGateOptions& options)
+      : prelocalizer_(prelocalizer), options_(options) {}
+
+  // Judges one pre-localization's hypotheses (best first), made at 'odometry'; returns whether
+  // they decide. 'hidden_objects': objects out of view that the hypotheses also explain (the bag
+  // of words' hidden object, whose chain neighbours gave them): evidence beyond those in view.
+  bool Update(const std::vector<PoseCandidate>& candidates, const Pose2& odometry,
+              int hidden_objects = 0);
+
+  void Reset();
+
+ private:
+  const PreLocalizer& prelocalizer_;
+  DecisionGateOptions options_;
+  // The place the latest pre-localizations decided on, the odometry then, and how many in a row.
+  std::optional<std::pair<Pose2, Pose2>> decision_;
+  int streak_ = 0;
+  // The most objects look-alike places explained alike, and the odometry then.
+  std::optional<std::pair<int, Pose2>> tie_;
+};
+
+}  // namespace semchain::localization

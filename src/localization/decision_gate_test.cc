@@ -1,0 +1,94 @@
+#include "localization/decision_gate.h"
+
+#include <gtest/gtest.h>
+
+namespace semchain::localization {
+namespace {
+
+// An empty free map: the gate only asks the pre-localizer whether hypotheses stand out and
+// whether two poses are distinct places.
+mapping::MapImage EmptyMap() {
+  mapping::MapImage map;
+  map.resolution = 0.05;
+  map.width = 20;
+  map.height = 20;
+  map.cells.assign(400, 0);
+  return map;
+}
+
+PoseCandidate Hypothesis(double x, double y, int agreeing, double laser) {
+  PoseCandidate candidate;
+  candidate.pose = Pose2(x, y, 0.0);
+  candidate.agreeing = agreeing;
+  candidate.laser_score = laser;
+  return candidate;
+}
+
+class DecisionGateTest : public ::testing::Test {
+ protected:
+  DecisionGateTest() : prelocalizer_(semantic::SemanticMap(), EmptyMap(), {}) {}
+
+  PreLocalizer prelocalizer_;
+  // Look-alike offices 6 m apart: the right one (x = 2) and another (x = 8).
+  const std::vector<PoseCandidate> tied_ = {Hypothesis(2, 1, 2, 0.9), Hypothesis(8, 1, 2, 0.88)};
+  const std::vector<PoseCandidate> other_alone_ = {Hypothesis(8, 1, 2, 0.9)};
+  const std::vector<PoseCandidate> right_with_more_ = {Hypothesis(2, 1, 3, 0.9),
+                                                       Hypothesis(8, 1, 2, 0.9)};
+};
+
+TEST_F(DecisionGateTest, APlaceMustStandOutTwiceInARow) {
+  DecisionGate gate(prelocalizer_, {2, false, 1.0});
+  const Pose2 odometry(0.0, 0.0, 0.0);
+  EXPECT_FALSE(gate.Update(other_alone_, odometry));
+  EXPECT_TRUE(gate.Update(other_alone_, odometry));
+  // Another place, or a look-alike beside it, starts the count again.
+  EXPECT_FALSE(gate.Update(right_with_more_, odometry));
+  EXPECT_FALSE(gate.Update(tied_, odometry));
+  EXPECT_FALSE(gate.Update(right_with_more_, odometry));
+  EXPECT_TRUE(gate.Update(right_with_more_, odometry));
+  // The place is compared where odometry carries it: the robot turned a quarter turn in place,
+  // the hypothesis turned with it.
+  DecisionGate turning(prelocalizer_, {2, false, 1.0});
+  EXPECT_FALSE(turning.Update({Hypothesis(8, 1, 2, 0.9)}, Pose2(0.0, 0.0, 0.0)));
+  PoseCandidate turned = Hypothesis(8, 1, 2, 0.9);
+  turned.pose.theta = 1.5;
+  EXPECT_TRUE(turning.Update({turned}, Pose2(0.0, 0.0, 1.5)));
+  // With one confirmation each pre-localization decides on its own.
+  DecisionGate single(prelocalizer_, {1, false, 1.0});
+  EXPECT_TRUE(single.Update(other_alone_, odometry));
+}
+
+TEST_F(DecisionGateTest, AfterATieOnlyMoreObjectsDecide) {
+  DecisionGate gate(prelocalizer_, {1, true, 1.0});
+  const Pose2 odometry(0.0, 0.0, 0.0);
+  EXPECT_FALSE(gate.Update(tied_, odometry));
+  // The look-alike office alone, explaining the same two objects: the right one was left out,
+  // not ruled out.
+  EXPECT_FALSE(gate.Update(other_alone_, odometry));
+  EXPECT_FALSE(gate.Update(other_alone_, odometry));
+  // A third object only the right office explains decides.
+  EXPECT_TRUE(gate.Update(right_with_more_, odometry));
+  // An object the bag of words names hidden there is evidence the tie did not have.
+  DecisionGate bow(prelocalizer_, {1, true, 1.0});
+  EXPECT_FALSE(bow.Update(tied_, odometry));
+  EXPECT_FALSE(bow.Update(other_alone_, odometry));
+  EXPECT_TRUE(bow.Update(other_alone_, odometry, 1));
+  // Without the rule the lone look-alike decides.
+  DecisionGate plain(prelocalizer_, {1, false, 1.0});
+  EXPECT_FALSE(plain.Update(tied_, odometry));
+  EXPECT_TRUE(plain.Update(other_alone_, odometry));
+}
+
+TEST_F(DecisionGateTest, TheTieIsForgottenAfterTheRobotMoved) {
+  DecisionGate gate(prelocalizer_, {1, true, 1.0});
+  EXPECT_FALSE(gate.Update(tied_, Pose2(0.0, 0.0, 0.0)));
+  EXPECT_FALSE(gate.Update(other_alone_, Pose2(0.9, 0.0, 0.0)));
+  EXPECT_TRUE(gate.Update(other_alone_, Pose2(1.1, 0.0, 0.0)));
+  // Reset forgets it too.
+  EXPECT_FALSE(gate.Update(tied_, Pose2(0.0, 0.0, 0.0)));
+  gate.Reset();
+  EXPECT_TRUE(gate.Update(other_alone_, Pose2(0.0, 0.0, 0.0)));
+}
+
+}  // namespace
+}  // namespace semchain::localization
