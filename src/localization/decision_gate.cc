@@ -8,30 +8,38 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
       (tie_->second.translation() - odometry.translation()).norm() > options_.forget_after_travel) {
     tie_.reset();
   }
-  bool decided = prelocalizer_.Decided(candidates);
-  const int explained = candidates.empty() ? 0 : candidates.front().agreeing + hidden_objects;
-  if (!decided && !candidates.empty() && options_.new_evidence &&
-      (!tie_ || explained >= tie_->first)) {
-    tie_.emplace(explained, odometry);
-  }
-  if (decided && tie_ && explained <= tie_->first) decided = false;
-  if (!decided) {
-    decision_.reset();
-    streak_ = 0;
+  // No hypothesis: no pair of the objects seen fitted anywhere; nothing for or against.
+  if (candidates.empty()) return false;
+  const PoseCandidate& best = candidates.front();
+  const int explained = best.agreeing + hidden_objects;
+  const bool at_leader =
+      leader_ &&
+      !prelocalizer_.DistinctPlaces(leader_->pose * leader_->odometry.Between(odometry), best.pose);
+  if (!prelocalizer_.Decided(candidates)) {
+    if (options_.new_evidence && (!tie_ || explained >= tie_->first)) {
+      tie_.emplace(explained, odometry);
+    }
+    // A look-alike of the leader is as likely as it: the count starts again.
+    leader_.reset();
     return false;
   }
-  const Pose2& best = candidates.front().pose;
-  const bool same_place =
-      decision_ &&
-      !prelocalizer_.DistinctPlaces(decision_->first * decision_->second.Between(odometry), best);
-  streak_ = same_place ? streak_ + 1 : 1;
-  decision_.emplace(best, odometry);
-  return streak_ >= options_.confirmations;
+  if (tie_ && explained <= tie_->first) return false;
+  if (at_leader) {
+    const int count = leader_->count + 1;
+    leader_ = Leader{best.pose, odometry, explained, best.laser_score, count};
+  } else if (!leader_ || explained > leader_->explained ||
+             (explained == leader_->explained && best.laser_score > leader_->laser_score)) {
+    leader_ = Leader{best.pose, odometry, explained, best.laser_score, 1};
+  } else {
+    // A lone place the objects and the laser support less than the leader: a frame that left
+    // the leader out (its pair placed too far off), not evidence against it.
+    return false;
+  }
+  return leader_->count >= options_.confirmations;
 }
 
 void DecisionGate::Reset() {
-  decision_.reset();
-  streak_ = 0;
+  leader_.reset();
   tie_.reset();
 }
 

@@ -12,8 +12,10 @@
 // it kept. Over a turn that is not enough on a floor of look-alike offices: a frame can leave the
 // right office out — its pair placed too far off for the laser to confirm it — and then a
 // look-alike office stands alone. The gate asks more:
-//  - the same place must stand out in 'confirmations' pre-localizations in a row (carried from
-//    one to the next by odometry);
+//  - the same place must stand out in 'confirmations' pre-localizations (carried from one to the
+//    next by odometry) with no look-alike tie between them; a lone place that explains fewer
+//    objects, or as many with a worse laser fit, does not interrupt the count (a frame that left
+//    the leading place out), nor does a pre-localization without any hypothesis;
 //  - once look-alike places were left undecided with k objects explained, the best place must
 //    explain more than k: the objects that could not separate them cannot separate them later.
 //    That tie is forgotten once the robot has moved 'forget_after_travel' metres (the observation
@@ -42,9 +44,16 @@ class DecisionGate {
  private:
   const PreLocalizer& prelocalizer_;
   DecisionGateOptions options_;
-  // The place the latest pre-localizations decided on, the odometry then, and how many in a row.
-  std::optional<std::pair<Pose2, Pose2>> decision_;
-  int streak_ = 0;
+  // The place the latest pre-localizations decided on: its pose and the odometry then, what
+  // supported it, and how many times it was decided.
+  struct Leader {
+    Pose2 pose;
+    Pose2 odometry;
+    int explained = 0;
+    double laser_score = 0.0;
+    int count = 0;
+  };
+  std::optional<Leader> leader_;
   // The most objects look-alike places explained alike, and the odometry then.
   std::optional<std::pair<int, Pose2>> tie_;
 };

@@ -41,7 +41,7 @@ TEST_F(DecisionGateTest, APlaceMustStandOutTwiceInARow) {
   const Pose2 odometry(0.0, 0.0, 0.0);
   EXPECT_FALSE(gate.Update(other_alone_, odometry));
   EXPECT_TRUE(gate.Update(other_alone_, odometry));
-  // Another place, or a look-alike beside it, starts the count again.
+  // A place explaining more, or a look-alike tie, starts the count again.
   EXPECT_FALSE(gate.Update(right_with_more_, odometry));
   EXPECT_FALSE(gate.Update(tied_, odometry));
   EXPECT_FALSE(gate.Update(right_with_more_, odometry));
@@ -56,6 +56,26 @@ TEST_F(DecisionGateTest, APlaceMustStandOutTwiceInARow) {
   // With one confirmation each pre-localization decides on its own.
   DecisionGate single(prelocalizer_, {1, false, 1.0});
   EXPECT_TRUE(single.Update(other_alone_, odometry));
+}
+
+// lab_loop seed 2, trial 13: the right place stood out with a near-perfect laser fit; in the next
+// frames its pair was placed too far off and a lone look-alike with a poor fit stood out instead,
+// or no pair fitted at all. Neither is evidence against the first.
+TEST_F(DecisionGateTest, AWeakerLonePlaceOrNoHypothesisDoesNotInterruptTheCount) {
+  DecisionGate gate(prelocalizer_, {2, false, 1.0});
+  const Pose2 odometry(0.0, 0.0, 0.0);
+  const std::vector<PoseCandidate> right = {Hypothesis(2, 1, 2, 0.98)};
+  EXPECT_FALSE(gate.Update(right, odometry));
+  EXPECT_FALSE(gate.Update({Hypothesis(8, 1, 2, 0.38)}, odometry));  // worse fit
+  EXPECT_FALSE(gate.Update({}, odometry));
+  EXPECT_FALSE(gate.Update({Hypothesis(5, 4, 1, 0.99)}, odometry));  // fewer objects
+  EXPECT_TRUE(gate.Update(right, odometry));
+  // A lone place with a better fit, or explaining more, takes the lead and counts from one.
+  DecisionGate better(prelocalizer_, {2, false, 1.0});
+  EXPECT_FALSE(better.Update(right, odometry));
+  EXPECT_FALSE(better.Update({Hypothesis(8, 1, 2, 0.99)}, odometry));
+  EXPECT_FALSE(better.Update(right, odometry));  // weaker than the new leader now
+  EXPECT_TRUE(better.Update({Hypothesis(8, 1, 2, 0.99)}, odometry));
 }
 
 TEST_F(DecisionGateTest, AfterATieOnlyMoreObjectsDecide) {
