@@ -29,6 +29,7 @@ struct BenchLocalizeArgs {
   std::string protocol = "semchain";
   int trials = 20;
   int seed = 1;
+  std::optional<int> filter_seed;
   std::optional<double> window_s;
   std::optional<double> alpha;
 };
@@ -98,9 +99,12 @@ std::string MarkdownTable(const nlohmann::json& results) {
   std::ostringstream md;
   md << "# semchain bench localize\n\nlog: `" << results["log"].get<std::string>() << "`, protocol "
      << results["protocol"].get<std::string>() << ", " << results["trials"] << " trials, seed "
-     << results["seed"] << ", window " << results["window"].get<std::string>() << ", AMCL alphas "
-     << results["alpha"] << ", particles " << results["max_particles"] << "; "
-     << SuccessRule(results)
+     << results["seed"]
+     << (results["filter_seed"].is_null()
+             ? std::string()
+             : ", filter seed " + std::to_string(results["filter_seed"].get<int>()))
+     << ", window " << results["window"].get<std::string>() << ", AMCL alphas " << results["alpha"]
+     << ", particles " << results["max_particles"] << "; " << SuccessRule(results)
      << " (reached: within them at least once; at end: within them at the end)\n\n"
      << "| method | successes | success rate | mean time (s) | median time (s) | "
         "mean / median streak start (s) | mean scans | "
@@ -137,6 +141,7 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
   eval::LogTrialOptions options;
   options.trials = args.trials;
   options.seed = static_cast<std::uint64_t>(args.seed);
+  if (args.filter_seed) options.filter_seed = static_cast<std::uint64_t>(*args.filter_seed);
   if (args.protocol == "nav2") {
     if (args.window_s || args.alpha) {
       return ReportError(Status::Error(
@@ -196,6 +201,8 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
       {"log", args.log},
       {"trials", args.trials},
       {"seed", args.seed},
+      {"filter_seed",
+       args.filter_seed ? nlohmann::json(*args.filter_seed) : nlohmann::json(nullptr)},
       {"protocol", args.protocol},
       {"timestamps_usable", timed},
       {"alpha", options.amcl.alpha1},
@@ -236,6 +243,11 @@ void AddBenchLocalize(CLI::App& bench, int& exit_code) {
       ->required();
   command->add_option("--trials", args->trials, "Number of trials")->check(CLI::PositiveNumber);
   command->add_option("--seed", args->seed, "Random seed (trial starts and filters)");
+  command
+      ->add_option("--filter-seed", args->filter_seed,
+                   "Seed of the filters' random streams only (default: --seed); the trial starts "
+                   "and the odometry noise keep --seed")
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--method", args->methods, "amcl, scanmatch-global (comma-separated)")
       ->delimiter(',')
       ->check(CLI::IsMember({"amcl", "scanmatch-global"}));

@@ -146,8 +146,9 @@ LogTrial RunAmclTrial(const std::vector<StampedScan>& scans,
   trial.trial = t;
   trial.start_scan = span.start;
   const double cpu_start = ProcessCpuSeconds();
-  localization::Amcl amcl(map, options.amcl,
-                          MakeRng(options.seed, 1 + static_cast<std::uint64_t>(t)));
+  localization::Amcl amcl(
+      map, options.amcl,
+      MakeRng(options.filter_seed.value_or(options.seed), 1 + static_cast<std::uint64_t>(t)));
   amcl.InitializeGlobal();
   std::vector<std::pair<int, Error>> history;
   for (int i = span.start; i <= span.end; ++i) {

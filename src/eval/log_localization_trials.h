@@ -27,6 +27,9 @@ namespace semchain::eval {
 struct LogTrialOptions {
   int trials = 20;
   std::uint64_t seed = 1;
+  // Seeds the filters' random streams instead of 'seed', which keeps the trial starts and the
+  // odometry noise: the spread of a result over filter streams on the same trials.
+  std::optional<std::uint64_t> filter_seed;
   std::string method = "amcl";  // amcl | scanmatch-global
   // A trial covers this much log time after its start scan (start scans are drawn among those
   // with that much log left). Logs whose timestamps do not increase use window_scans instead.

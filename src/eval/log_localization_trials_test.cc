@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "core/angles.h"
 #include "mapping/testing/synthetic_map.h"
 
@@ -42,6 +44,17 @@ TEST(Nav2ProtocolTest, SetsThePeersParametersAndKeepsTrialsSeedAndMethod) {
   EXPECT_TRUE(nav2.Validate(&error)) << error;
 }
 
+// Two trials on the synthetic room, scored by the nav2 protocol's streak rule.
+LogTrialOptions RoomTrialOptions() {
+  LogTrialOptions options;
+  options.trials = 2;
+  options.seed = 3;
+  options.window_seconds = 30.0;
+  options.amcl.max_particles = 3000;
+  options.success_updates = 5;
+  return options;
+}
+
 // The odometry is expressed in a frame 100 m and 1 rad away from the map's (AMCL only uses its
 // increments): scored against it every trial would fail; scored against the truth they
 // converge. Under the streak rule a trial ends at the update that completes 5 updates within
@@ -53,12 +66,7 @@ TEST(LogTrialsTest, StreakRuleScoresAgainstTheTruthAndEndsAtConvergence) {
     s.odometry = odometry_frame * s.odometry;
     s.laser_pose = odometry_frame * s.laser_pose;
   }
-  LogTrialOptions options;
-  options.trials = 2;
-  options.seed = 3;
-  options.window_seconds = 30.0;
-  options.amcl.max_particles = 3000;
-  options.success_updates = 5;
+  const LogTrialOptions options = RoomTrialOptions();
   const std::vector<LogTrial> trials =
       RunLogTrials(run.scans, mapping::testing::RoomMap(), options, {}, run.truth);
   ASSERT_EQ(trials.size(), 2u);
@@ -79,6 +87,33 @@ TEST(LogTrialsTest, StreakRuleScoresAgainstTheTruthAndEndsAtConvergence) {
   EXPECT_EQ(summary.successes, 2);
   ASSERT_TRUE(summary.median_time_s.has_value());
   EXPECT_GT(summary.cpu_ms_per_update, 0.0);
+}
+
+// --filter-seed: other random streams for the filters on the same trials (start scans), and the
+// default stream when it equals the seed.
+TEST(LogTrialsTest, FilterSeedChangesTheStreamsNotTheTrials) {
+  const mapping::testing::SimulatedRun run = mapping::testing::SimulateRoomRun(0.1, 0.01, 2);
+  const LogTrialOptions options = RoomTrialOptions();
+  const auto run_trials = [&](std::optional<std::uint64_t> filter_seed) {
+    LogTrialOptions o = options;
+    o.filter_seed = filter_seed;
+    return RunLogTrials(run.scans, mapping::testing::RoomMap(), o, {}, run.truth);
+  };
+  const std::vector<LogTrial> plain = run_trials(std::nullopt);
+  const std::vector<LogTrial> same = run_trials(3);
+  const std::vector<LogTrial> other = run_trials(4);
+  ASSERT_EQ(plain.size(), 2u);
+  ASSERT_EQ(same.size(), 2u);
+  ASSERT_EQ(other.size(), 2u);
+  bool any_differs = false;
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    EXPECT_EQ(plain[i].start_scan, same[i].start_scan);
+    EXPECT_EQ(plain[i].start_scan, other[i].start_scan);
+    EXPECT_EQ(plain[i].error_m, same[i].error_m);
+    EXPECT_EQ(plain[i].iterations, same[i].iterations);
+    any_differs = any_differs || plain[i].error_m != other[i].error_m;
+  }
+  EXPECT_TRUE(any_differs);
 }
 
 }  // namespace
