@@ -12,9 +12,6 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
   if (candidates.empty()) return false;
   const PoseCandidate& best = candidates.front();
   const int explained = best.agreeing + hidden_objects;
-  const bool at_leader =
-      leader_ &&
-      !prelocalizer_.DistinctPlaces(leader_->pose * leader_->odometry.Between(odometry), best.pose);
   if (!prelocalizer_.Decided(candidates)) {
     if (options_.new_evidence && (!tie_ || explained >= tie_->first)) {
       tie_.emplace(explained, odometry);
@@ -24,6 +21,10 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
     return false;
   }
   if (tie_ && explained <= tie_->first) return false;
+  // The leader's place carried by odometry to where this pre-localization was made.
+  const bool at_leader =
+      leader_ &&
+      !prelocalizer_.DistinctPlaces(leader_->pose * leader_->odometry.Between(odometry), best.pose);
   if (at_leader) {
     const int count = leader_->count + 1;
     leader_ = Leader{best.pose, odometry, explained, best.laser_score, count};

@@ -36,7 +36,7 @@ class DecisionGateTest : public ::testing::Test {
                                                        Hypothesis(8, 1, 2, 0.9)};
 };
 
-TEST_F(DecisionGateTest, APlaceMustStandOutTwiceInARow) {
+TEST_F(DecisionGateTest, APlaceMustStandOutTwice) {
   DecisionGate gate(prelocalizer_, {2, false, 1.0});
   const Pose2 odometry(0.0, 0.0, 0.0);
   EXPECT_FALSE(gate.Update(other_alone_, odometry));

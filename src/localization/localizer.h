@@ -110,8 +110,8 @@ struct LocalizerOptions {
   // fits the other place better.
   int relocate_margin = 2;
   // When pre-localization decides between look-alike places (DecisionGate): the same place
-  // standing out in this many pre-localizations in a row, and — after look-alike places were
-  // left undecided with k objects explained — explaining more than k (forgotten after
+  // standing out this many times with no look-alike tie between, and — after look-alike places
+  // were left undecided with k objects explained — explaining more than k (forgotten after
   // memory.max_travel). 1 and false: every pre-localization decides on its own.
   int decision_confirmations = 2;
   bool decide_on_new_evidence = true;
@@ -244,7 +244,7 @@ class Localizer {
   mutable std::optional<std::vector<Eigen::Vector2d>> scan_points_;
   ObservationMemory memory_;
   bool single_object_tried_ = false;
-  // The latest pre-localization left look-alike places (PreLocalizer::Decided).
+  // The latest pre-localization did not decide between look-alike places (DecisionGate).
   bool undecided_ = false;
   DecisionGate decision_gate_;
   // The latest pre-localization and the odometry when it was made.

@@ -239,10 +239,11 @@ class PreLocalizer {
                      std::vector<Match>* by_centre = nullptr) const;
   // The matches as PoseCandidate::matches names them: (observed index, mapped object id).
   std::vector<std::pair<int, int>> MatchIds(std::span<const Match> matched) const;
-  // Least-squares pose over the matches (see PreLocalizationOptions::refine).
-  double AlignmentWeight(int object) const;
   // Poses within merge_distance and merge_heading: one hypothesis.
   bool SamePlace(const Pose2& a, const Pose2& b) const;
+  // How much a mapped object counts in Refine (see PreLocalizationOptions::weight_by_extent).
+  double AlignmentWeight(int object) const;
+  // Least-squares pose over the matches (see PreLocalizationOptions::refine).
   void Refine(const std::vector<ObservedObject>& observed, std::span<const Match> matched,
               Pose2* pose) const;
   // Agreement and refinement of every candidate; drops those agreeing with fewer than
