@@ -1,5 +1,6 @@
 // semchain bench localize --log CORRECTED.clf --trials N --seed S --out DIR
 //     [--method amcl|scanmatch-global[,...]] [--protocol semchain|nav2] [--window SECONDS]
+//     [--filter-seed F]
 // Global localization (unknown start) on a real log with corrected poses: the map is built from
 // the corrected poses, each trial starts at a random scan and runs the method over the following
 // scans (DESIGN.md §6). --protocol semchain (default): the log's odometry, nav2's AMCL defaults
@@ -8,6 +9,7 @@
 // DIR/results.md.
 #include <spdlog/spdlog.h>
 
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -247,7 +249,7 @@ void AddBenchLocalize(CLI::App& bench, int& exit_code) {
       ->add_option("--filter-seed", args->filter_seed,
                    "Seed of the filters' random streams only (default: --seed); the trial starts "
                    "and the odometry noise keep --seed")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   command->add_option("--method", args->methods, "amcl, scanmatch-global (comma-separated)")
       ->delimiter(',')
       ->check(CLI::IsMember({"amcl", "scanmatch-global"}));
