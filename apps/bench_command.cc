@@ -275,12 +275,12 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
   if (relations) {
     md << "| log | config | particles | variant | seed | trans (m) mean ± std | rot (deg) mean ± "
           "std | wall (s) | peak RSS (MB) | resamplings / genetic | loop closures found / "
-          "accepted / rejected | optimizer (s) |\n"
+          "accepted / rejected / gated | optimizer (s) |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   } else {
     md << "| log | config | particles | variant | seed | ATE RMSE (m) | ATE RMSE aligned (m) | "
           "ATE max (m) | rot RMSE (deg) | wall (s) | peak RSS (MB) | loop closures found / "
-          "accepted / rejected | optimizer (s) |\n"
+          "accepted / rejected / gated | optimizer (s) |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   }
   for (const nlohmann::json& run : results["runs"]) {
@@ -307,7 +307,8 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
     if (run.contains("pose_graph")) {
       const nlohmann::json& g = run["pose_graph"];
       md << g["closures_found"] << " / " << g["closures_accepted"] << " / "
-         << g["closures_rejected"] << " | " << Fixed(g["optimizer_seconds"], 2);
+         << g["closures_rejected"] << " / " << g.value("closures_gated", 0) << " | "
+         << Fixed(g["optimizer_seconds"], 2);
     } else {
       md << "– | –";
     }

@@ -99,6 +99,7 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
                           {"closures_found", l.found},
                           {"closures_accepted", l.accepted},
                           {"closures_rejected", l.rejected},
+                          {"closures_gated", l.gated},
                           {"optimizations", l.optimizations},
                           {"search_seconds", l.search_seconds},
                           {"optimizer_seconds", l.optimizer_seconds},
@@ -218,8 +219,10 @@ int RunSlamCommand(const SlamArgs& args) {
     const mapping::LoopClosureStatistics& l = result.loop_closure;
     spdlog::info(
         "slam: pose graph: {} nodes, {} submaps, loop closures {} found, {} accepted, {} "
-        "rejected; search {:.1f} s, optimizer {:.2f} s",
-        l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.search_seconds, l.optimizer_seconds);
+        "rejected by the other closures, {} not added (off the motion's prediction); search "
+        "{:.1f} s, optimizer {:.2f} s",
+        l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.gated, l.search_seconds,
+        l.optimizer_seconds);
   }
   return 0;
 }

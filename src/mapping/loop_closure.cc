@@ -1,9 +1,16 @@
 #include "mapping/loop_closure.h"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
+#include <optional>
 
+#include "core/angles.h"
 #include "core/check.h"
+#include "mapping/chain_uncertainty.h"
 #include "mapping/map_io.h"
 #include "mapping/ray_casting.h"
 
@@ -26,14 +33,25 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "max_built_submaps must be >= 1";
     return false;
   }
-  if (!(linear_window_meters > 0.0) || !(max_linear_window_meters >= linear_window_meters) ||
-      !(linear_window_per_meter >= 0.0)) {
-    *error = "linear windows must be positive, growing and max >= the start";
+  if (!(window_sigmas > 0.0)) {
+    *error = "window_sigmas must be positive";
     return false;
   }
-  if (!(angular_window_radians > 0.0) || !(max_angular_window_radians >= angular_window_radians) ||
-      !(angular_window_per_meter >= 0.0)) {
-    *error = "angular windows must be positive, growing and max >= the start";
+  if (!(gate_sigmas >= 0.0)) {
+    *error = "gate_sigmas must be >= 0 (0: no gate)";
+    return false;
+  }
+  if (!(confirm_within_meters >= 0.0)) {
+    *error = "confirm_within_meters must be >= 0";
+    return false;
+  }
+  if (!(linear_window_meters > 0.0) || !(max_linear_window_meters >= linear_window_meters)) {
+    *error = "linear windows must be positive and max_linear_window_meters >= linear_window_meters";
+    return false;
+  }
+  if (!(angular_window_radians > 0.0) || !(max_angular_window_radians >= angular_window_radians)) {
+    *error =
+        "angular windows must be positive and max_angular_window_radians >= angular_window_radians";
     return false;
   }
   if (!(min_score > 0.0 && min_score <= 1.0)) {
@@ -114,6 +132,12 @@ void Acquire(Submap* wanted, const Submap* keep, std::uint64_t tick, std::vector
   }
 }
 
+Eigen::Vector3d LoopVariances(const LoopClosureOptions& options) {
+  return Eigen::Vector3d(options.loop_sigma_meters * options.loop_sigma_meters,
+                         options.loop_sigma_meters * options.loop_sigma_meters,
+                         options.loop_sigma_radians * options.loop_sigma_radians);
+}
+
 PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
                          const LoopClosureOptions& options) {
   PoseGraphEdge edge;
@@ -127,6 +151,71 @@ PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
       options.odometry_sigma_radians + options.odometry_sigma_radians_per_radian * turn;
   edge.sigmas = Eigen::Vector3d(xy, xy, theta);
   return edge;
+}
+
+// Covariance of node i relative to submap 'first' in the submap's frame, from the motion edges
+// since the later of the submap and the last accepted closure ('anchor'; the closure ties the
+// path before it to the map, up to the closure's own uncertainty).
+Eigen::Matrix3d RelativeUncertainty(const ChainUncertainty& chain,
+                                    const std::vector<Pose2>& estimate, int first, int anchor,
+                                    int i, const LoopClosureOptions& options) {
+  const int from = std::max(first, anchor);
+  Eigen::Matrix3d covariance = chain.Relative(from, i);
+  if (from != first) {
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    rotation.topLeftCorner<2, 2>() =
+        Eigen::Rotation2Dd(estimate[static_cast<std::size_t>(from)].theta -
+                           estimate[static_cast<std::size_t>(first)].theta)
+            .toRotationMatrix();
+    covariance = rotation * covariance * rotation.transpose();
+    covariance.diagonal() += LoopVariances(options);
+  }
+  return covariance;
+}
+
+SearchWindow WindowFor(const Eigen::Matrix3d& covariance, const LoopClosureOptions& options) {
+  SearchWindow window;
+  const double linear_sigma =
+      std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance.topLeftCorner<2, 2>(),
+                                                               Eigen::EigenvaluesOnly)
+                    .eigenvalues()
+                    .maxCoeff());
+  window.linear_window_meters =
+      std::clamp(options.window_sigmas * linear_sigma, options.linear_window_meters,
+                 options.max_linear_window_meters);
+  window.angular_window_radians =
+      std::clamp(options.window_sigmas * std::sqrt(covariance(2, 2)),
+                 options.angular_window_radians, options.max_angular_window_radians);
+  return window;
+}
+
+// Squared Mahalanobis distance of the closure 'measured' from 'predicted' (both node i in the
+// submap's frame) under the chain's covariance plus the closure's own.
+double SquaredMahalanobis(const Pose2& measured, const Pose2& predicted,
+                          const Eigen::Matrix3d& chain_covariance,
+                          const LoopClosureOptions& options) {
+  const Eigen::Vector3d error(measured.x - predicted.x, measured.y - predicted.y,
+                              NormalizeAngle(measured.theta - predicted.theta));
+  Eigen::Matrix3d covariance = chain_covariance;
+  covariance.diagonal() += LoopVariances(options);
+  return error.dot(covariance.ldlt().solve(error));
+}
+
+// Squared Mahalanobis distance between what two closures say of the motion from a.to to b.to
+// (each places its node in the map) and what the chain says of it.
+double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
+                               const std::vector<Pose2>& estimate, const ChainUncertainty& chain,
+                               const LoopClosureOptions& options) {
+  const auto at = [&estimate](int node) -> const Pose2& {
+    return estimate[static_cast<std::size_t>(node)];
+  };
+  const Pose2 implied = (at(a.from) * a.relative).Between(at(b.from) * b.relative);
+  const Pose2 chained = at(a.to).Between(at(b.to));
+  const Eigen::Vector3d error(implied.x - chained.x, implied.y - chained.y,
+                              NormalizeAngle(implied.theta - chained.theta));
+  Eigen::Matrix3d covariance = chain.Relative(a.to, b.to);
+  covariance.diagonal() += 2.0 * LoopVariances(options);
+  return error.dot(covariance.ldlt().solve(error));
 }
 
 }  // namespace
@@ -146,7 +235,10 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
   std::vector<double> travel(n, 0.0);
   std::vector<Submap> submaps;
   std::uint64_t tick = 0;  // counts submap uses, for the built-submap cache
-  double travel_at_closure = 0.0;
+  int anchor = 0;          // node of the last accepted closure
+  // The last closure the gate held back, added if the next one (soon after) agrees with it.
+  std::optional<PoseGraphEdge> pending;
+  ChainUncertainty chain(n > 0 ? poses[0] : Pose2());
 
   for (std::size_t i = 0; i < n; ++i) {
     if (progress && i > 0) progress(i);
@@ -157,6 +249,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
       travel[i] = travel[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm();
       edges.push_back(MotionEdge(node - 1, poses[i - 1], poses[i], options));
       estimate.push_back(estimate[i - 1] * edges.back().relative);
+      chain.Append(estimate.back(), edges.back().sigmas.x(), edges.back().sigmas.z());
     }
     // The submap this node's scan goes into.
     if (submaps.empty() || travel[i] - travel[static_cast<std::size_t>(submaps.back().first)] >
@@ -179,22 +272,18 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     const MatchPoints points =
         SelectMatchPoints(*scans[i], options.match_max_range_meters, options.match_beam_step);
     if (static_cast<int>(points.size()) < options.min_points) continue;
-    const double since = travel[i] - travel_at_closure;
-    SearchWindow window;
-    window.linear_window_meters =
-        std::min(options.max_linear_window_meters,
-                 options.linear_window_meters + options.linear_window_per_meter * since);
-    window.angular_window_radians =
-        std::min(options.max_angular_window_radians,
-                 options.angular_window_radians + options.angular_window_per_meter * since);
     bool searched = false;
     Submap* best_submap = nullptr;
     BranchAndBoundResult best;
+    Eigen::Matrix3d best_covariance = Eigen::Matrix3d::Zero();
     for (Submap& submap : submaps) {
       if (!submap.finished || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
                                   options.min_loop_travel_meters) {
         continue;
       }
+      const Eigen::Matrix3d covariance =
+          RelativeUncertainty(chain, estimate, submap.first, anchor, node, options);
+      SearchWindow window = WindowFor(covariance, options);
       window.center = estimate[static_cast<std::size_t>(submap.first)].Between(estimate[i]);
       const double reach = window.linear_window_meters + submap.radius;
       if ((window.center.translation() - submap.center).norm() > reach) continue;
@@ -206,6 +295,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
       if (match.found && match.score > best.score) {
         best = match;
         best_submap = &submap;
+        best_covariance = covariance;
       }
     }
     stats.search_seconds += SecondsSince(search_start);
@@ -221,6 +311,27 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     closure.sigmas = Eigen::Vector3d(options.loop_sigma_meters, options.loop_sigma_meters,
                                      options.loop_sigma_radians);
     closure.loop_closure = true;
+    const double gate = options.gate_sigmas * options.gate_sigmas;
+    if (options.gate_sigmas > 0.0 &&
+        SquaredMahalanobis(closure.relative,
+                           estimate[static_cast<std::size_t>(closure.from)].Between(estimate[i]),
+                           best_covariance, options) > gate) {
+      // Off the motion's prediction: a lone aliased match, or drift the motion model does not
+      // cover. Drift makes the next closures agree with this one; aliasing does not.
+      const bool confirmed =
+          pending.has_value() &&
+          travel[i] - travel[static_cast<std::size_t>(pending->to)] <=
+              options.confirm_within_meters &&
+          SquaredPairDisagreement(*pending, closure, estimate, chain, options) <= gate;
+      if (!confirmed) {
+        pending = closure;
+        ++stats.gated;
+        continue;
+      }
+      --stats.gated;  // the pending closure is added after all
+      edges.push_back(*pending);
+      pending.reset();
+    }
     edges.push_back(closure);
     const std::size_t closure_index = edges.size() - 1;
     const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(
@@ -239,9 +350,10 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     }
     edges = std::move(kept);
     stats.rejected += static_cast<int>(gated.rejected.size());
-    if (kept_new) travel_at_closure = travel[i];
+    if (kept_new) anchor = node;
     // The solution was found without the rejected edges (the last solve), so it stands.
     estimate = gated.solution.poses;
+    chain.Reposition(estimate);
   }
   stats.submaps = static_cast<int>(submaps.size());
   if (progress) progress(n);

@@ -15,10 +15,11 @@
 // The pose graph behind the particle filter (DESIGN.md §3.2): the best particle's trajectory
 // becomes graph nodes, consecutive nodes are tied by the motion the filter found, nodes are
 // grouped into submaps (rigid local maps, Cartographer's idea), and every few nodes the scan is
-// searched for in the older submaps with the branch-and-bound matcher, in a window that grows
-// with the distance travelled since the last closure (the drift it may have to absorb). A match
-// above the score becomes a loop-closure edge; sparse pose adjustment with a robust loss then
-// moves the nodes, and a closure the others contradict is dropped.
+// searched for in the older submaps with the branch-and-bound matcher, in a window as wide as
+// the drift the motion since the submap (or the last closure) allows. A match above the score
+// that the motion also allows becomes a loop-closure edge (one it does not allow waits for a
+// second that agrees); sparse pose adjustment with a robust loss then moves the nodes, and a
+// closure the others contradict is dropped.
 namespace semchain::mapping {
 
 struct LoopClosureOptions {
@@ -36,13 +37,23 @@ struct LoopClosureOptions {
   double min_loop_travel_meters = 30.0;
   // Searches run from every n-th node.
   int search_every_nodes = 3;
-  // Search window: this much right after a closure, growing with the travel since.
+  // Search window: ±window_sigmas standard deviations of the node's pose relative to the
+  // submap (ChainUncertainty over the motion edges since the submap or the last accepted
+  // closure, whichever is later), at least the floors below and at most the caps. A window no
+  // wider than the drift the motion allows keeps a look-alike place one room away out of reach.
+  double window_sigmas = 3.0;
   double linear_window_meters = 1.0;
-  double linear_window_per_meter = 0.05;
   double max_linear_window_meters = 10.0;
   double angular_window_radians = 0.15;
-  double angular_window_per_meter = 0.004;
   double max_angular_window_radians = 0.6;
+  // A found closure further than this many standard deviations (Mahalanobis, the chain's
+  // uncertainty plus the closure's own) from where the graph puts the node is inconsistent with
+  // the motion since and is held back (0: no gate).
+  double gate_sigmas = 3.0;
+  // A held-back closure is added after all when the next closure, found within this much
+  // travel, agrees with it (the motion between their nodes within gate_sigmas): drift larger
+  // than the motion model allows then still gets corrected, a lone aliased match does not.
+  double confirm_within_meters = 10.0;
   // A match must score at least this (mean M of its points, 0..1) and have this many points.
   double min_score = 0.65;
   int min_points = 40;
@@ -52,7 +63,7 @@ struct LoopClosureOptions {
   // Cartographer refines its loop closures.
   CeresScanMatcherOptions refinement;
   // Uncertainties of the edges: consecutive nodes (standard deviations growing with the motion)
-  // and loop closures.
+  // and loop closures; they also size the search window and the gate above.
   double odometry_sigma_meters = 0.02;
   double odometry_sigma_per_meter = 0.02;
   double odometry_sigma_radians = 0.005;
@@ -73,7 +84,8 @@ struct LoopClosureStatistics {
   int searches = 0;  // nodes searched from
   int found = 0;     // matches above the score
   int accepted = 0;  // closures kept
-  int rejected = 0;  // closures dropped as inconsistent
+  int rejected = 0;  // closures dropped as inconsistent with the other closures
+  int gated = 0;     // closures not added: inconsistent with the motion since (gate_sigmas)
   int optimizations = 0;
   double search_seconds = 0.0;
   double optimizer_seconds = 0.0;

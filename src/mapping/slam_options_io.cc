@@ -168,12 +168,29 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
   if (node->IsNull()) return Status::Ok();
   if (!node->IsMap()) return node->Error("expected a map");
   LoopClosureOptions& l = options->loop_closure;
-  SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys(
-      {"enabled", "submap_travel_meters", "min_loop_travel_meters", "search_every_nodes",
-       "max_built_submaps", "linear_window_meters", "linear_window_per_meter",
-       "max_linear_window_meters", "angular_window_radians", "angular_window_per_meter",
-       "max_angular_window_radians", "min_score", "min_points", "match_max_range_meters",
-       "match_beam_step", "max_residual_sigmas", "loop_sigma_meters", "loop_sigma_radians"}));
+  SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys({"enabled",
+                                            "submap_travel_meters",
+                                            "min_loop_travel_meters",
+                                            "search_every_nodes",
+                                            "max_built_submaps",
+                                            "window_sigmas",
+                                            "linear_window_meters",
+                                            "max_linear_window_meters",
+                                            "angular_window_radians",
+                                            "max_angular_window_radians",
+                                            "gate_sigmas",
+                                            "confirm_within_meters",
+                                            "min_score",
+                                            "min_points",
+                                            "match_max_range_meters",
+                                            "match_beam_step",
+                                            "max_residual_sigmas",
+                                            "odometry_sigma_meters",
+                                            "odometry_sigma_per_meter",
+                                            "odometry_sigma_radians",
+                                            "odometry_sigma_radians_per_radian",
+                                            "loop_sigma_meters",
+                                            "loop_sigma_radians"}));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "enabled", &options->pose_graph));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "submap_travel_meters", &l.submap_travel_meters));
@@ -181,18 +198,18 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
       yaml::ReadOptional(*node, "min_loop_travel_meters", &l.min_loop_travel_meters));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "search_every_nodes", &l.search_every_nodes));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "max_built_submaps", &l.max_built_submaps));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "window_sigmas", &l.window_sigmas));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "linear_window_meters", &l.linear_window_meters));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "linear_window_per_meter", &l.linear_window_per_meter));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "max_linear_window_meters", &l.max_linear_window_meters));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "angular_window_radians", &l.angular_window_radians));
   SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "angular_window_per_meter", &l.angular_window_per_meter));
-  SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "max_angular_window_radians", &l.max_angular_window_radians));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "gate_sigmas", &l.gate_sigmas));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "confirm_within_meters", &l.confirm_within_meters));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_score", &l.min_score));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_points", &l.min_points));
   SEMCHAIN_RETURN_IF_ERROR(
@@ -200,6 +217,14 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &l.match_beam_step));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "max_residual_sigmas", &l.max_residual_sigmas));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "odometry_sigma_meters", &l.odometry_sigma_meters));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "odometry_sigma_per_meter", &l.odometry_sigma_per_meter));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "odometry_sigma_radians", &l.odometry_sigma_radians));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "odometry_sigma_radians_per_radian",
+                                              &l.odometry_sigma_radians_per_radian));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "loop_sigma_meters", &l.loop_sigma_meters));
   return yaml::ReadOptional(*node, "loop_sigma_radians", &l.loop_sigma_radians);
 }

@@ -40,10 +40,15 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_EQ(l.search_every_nodes, d.search_every_nodes);
   EXPECT_EQ(l.max_built_submaps, d.max_built_submaps);
   EXPECT_DOUBLE_EQ(l.linear_window_meters, d.linear_window_meters);
-  EXPECT_DOUBLE_EQ(l.linear_window_per_meter, d.linear_window_per_meter);
+  EXPECT_DOUBLE_EQ(l.window_sigmas, d.window_sigmas);
+  EXPECT_DOUBLE_EQ(l.gate_sigmas, d.gate_sigmas);
+  EXPECT_DOUBLE_EQ(l.confirm_within_meters, d.confirm_within_meters);
   EXPECT_DOUBLE_EQ(l.max_linear_window_meters, d.max_linear_window_meters);
   EXPECT_DOUBLE_EQ(l.angular_window_radians, d.angular_window_radians);
-  EXPECT_DOUBLE_EQ(l.angular_window_per_meter, d.angular_window_per_meter);
+  EXPECT_DOUBLE_EQ(l.odometry_sigma_meters, d.odometry_sigma_meters);
+  EXPECT_DOUBLE_EQ(l.odometry_sigma_per_meter, d.odometry_sigma_per_meter);
+  EXPECT_DOUBLE_EQ(l.odometry_sigma_radians, d.odometry_sigma_radians);
+  EXPECT_DOUBLE_EQ(l.odometry_sigma_radians_per_radian, d.odometry_sigma_radians_per_radian);
   EXPECT_DOUBLE_EQ(l.max_angular_window_radians, d.max_angular_window_radians);
   EXPECT_DOUBLE_EQ(l.min_score, d.min_score);
   EXPECT_EQ(l.min_points, d.min_points);
