@@ -101,6 +101,7 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
                           {"closures_rejected", l.rejected},
                           {"closures_gated", l.gated},
                           {"optimizations", l.optimizations},
+                          {"motion_noise_scale", l.motion_noise_scale},
                           {"search_seconds", l.search_seconds},
                           {"optimizer_seconds", l.optimizer_seconds},
                           {"residuals", l.residuals}};

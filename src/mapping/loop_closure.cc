@@ -64,6 +64,10 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "sigmas must be positive";
     return false;
   }
+  if (!(min_motion_noise_scale > 0.0) || !(max_motion_noise_scale >= min_motion_noise_scale)) {
+    *error = "motion noise scales must be positive and max >= min";
+    return false;
+  }
   if (!(max_residual_sigmas > 0.0)) {
     *error = "max_residual_sigmas must be positive";
     return false;
@@ -156,11 +160,12 @@ PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
 // Covariance of node i relative to submap 'first' in the submap's frame, from the motion edges
 // since the later of the submap and the last accepted closure ('anchor'; the closure ties the
 // path before it to the map, up to the closure's own uncertainty).
+// 'scale' multiplies the motion edges' part (1: the model as it is, 0: the closures' part alone).
 Eigen::Matrix3d RelativeUncertainty(const ChainUncertainty& chain,
                                     const std::vector<Pose2>& estimate, int first, int anchor,
-                                    int i, const LoopClosureOptions& options) {
+                                    int i, double scale, const LoopClosureOptions& options) {
   const int from = std::max(first, anchor);
-  Eigen::Matrix3d covariance = chain.Relative(from, i);
+  Eigen::Matrix3d covariance = scale * chain.Relative(from, i);
   if (from != first) {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
     rotation.topLeftCorner<2, 2>() =
@@ -218,6 +223,49 @@ double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
   return error.dot(covariance.ldlt().solve(error));
 }
 
+// What an accepted closure said that the graph did not already know: its error against the
+// graph's prediction and the two covariances that error had to be explained by.
+struct Innovation {
+  Eigen::Vector3d error;
+  Eigen::Matrix3d motion;  // the motion edges' part, at their modelled variances
+  Eigen::Matrix3d fixed;   // the closures' part
+};
+
+// The smallest factor on the motion edges' variances under which every closure's innovation
+// lies within the 99 % region of a 3-dof Gaussian (squared Mahalanobis distance 11.34), within
+// [min_scale, max_scale]: a filter far better than the model (its closures land where it
+// predicts) gets a stiffer chain, one that drifts more a looser one.
+double MotionNoiseScale(const std::vector<Innovation>& innovations, double min_scale,
+                        double max_scale) {
+  constexpr double kChiSquared3Dof99 = 11.345;
+  const auto worst = [&innovations](double scale) {
+    double largest = 0.0;
+    for (const Innovation& v : innovations) {
+      const Eigen::Matrix3d covariance = scale * v.motion + v.fixed;
+      largest = std::max(largest, v.error.dot(covariance.ldlt().solve(v.error)));
+    }
+    return largest;
+  };
+  if (worst(min_scale) <= kChiSquared3Dof99) return min_scale;
+  if (worst(max_scale) >= kChiSquared3Dof99) return max_scale;
+  double low = std::log(min_scale), high = std::log(max_scale);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const double middle = 0.5 * (low + high);
+    (worst(std::exp(middle)) > kChiSquared3Dof99 ? low : high) = middle;
+  }
+  return std::exp(high);
+}
+
+// 'edges' with the motion edges' standard deviations multiplied by sqrt(scale).
+std::vector<PoseGraphEdge> ScaledMotion(const std::vector<PoseGraphEdge>& edges, double scale) {
+  std::vector<PoseGraphEdge> scaled = edges;
+  const double factor = std::sqrt(scale);
+  for (PoseGraphEdge& edge : scaled) {
+    if (!edge.loop_closure) edge.sigmas *= factor;
+  }
+  return scaled;
+}
+
 }  // namespace
 
 LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
@@ -238,6 +286,9 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
   int anchor = 0;          // node of the last accepted closure
   // The last closure the gate held back, added if the next one (soon after) agrees with it.
   std::optional<PoseGraphEdge> pending;
+  // The motion edges' variance factor, re-estimated from the closures' innovations.
+  std::vector<Innovation> innovations;
+  double scale = 1.0;
   ChainUncertainty chain(n > 0 ? poses[0] : Pose2());
 
   for (std::size_t i = 0; i < n; ++i) {
@@ -282,7 +333,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
         continue;
       }
       const Eigen::Matrix3d covariance =
-          RelativeUncertainty(chain, estimate, submap.first, anchor, node, options);
+          RelativeUncertainty(chain, estimate, submap.first, anchor, node, 1.0, options);
       SearchWindow window = WindowFor(covariance, options);
       window.center = estimate[static_cast<std::size_t>(submap.first)].Between(estimate[i]);
       const double reach = window.linear_window_meters + submap.radius;
@@ -312,10 +363,9 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
                                      options.loop_sigma_radians);
     closure.loop_closure = true;
     const double gate = options.gate_sigmas * options.gate_sigmas;
+    const Pose2 predicted = estimate[static_cast<std::size_t>(closure.from)].Between(estimate[i]);
     if (options.gate_sigmas > 0.0 &&
-        SquaredMahalanobis(closure.relative,
-                           estimate[static_cast<std::size_t>(closure.from)].Between(estimate[i]),
-                           best_covariance, options) > gate) {
+        SquaredMahalanobis(closure.relative, predicted, best_covariance, options) > gate) {
       // Off the motion's prediction: a lone aliased match, or drift the motion model does not
       // cover. Drift makes the next closures agree with this one; aliasing does not.
       const bool confirmed =
@@ -334,8 +384,24 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     }
     edges.push_back(closure);
     const std::size_t closure_index = edges.size() - 1;
+    if (options.adapt_motion_noise) {
+      Innovation innovation;
+      innovation.error =
+          Eigen::Vector3d(closure.relative.x - predicted.x, closure.relative.y - predicted.y,
+                          NormalizeAngle(closure.relative.theta - predicted.theta));
+      const Eigen::Matrix3d at_unit_scale =
+          RelativeUncertainty(chain, estimate, closure.from, anchor, node, 1.0, options);
+      const Eigen::Matrix3d fixed_part =
+          RelativeUncertainty(chain, estimate, closure.from, anchor, node, 0.0, options);
+      innovation.motion = at_unit_scale - fixed_part;
+      innovation.fixed = fixed_part;
+      innovation.fixed.diagonal() += LoopVariances(options);
+      innovations.push_back(innovation);
+      scale = MotionNoiseScale(innovations, options.min_motion_noise_scale,
+                               options.max_motion_noise_scale);
+    }
     const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(
-        estimate, edges, options.max_residual_sigmas, options.optimizer);
+        estimate, ScaledMotion(edges, scale), options.max_residual_sigmas, options.optimizer);
     ++stats.optimizations;
     stats.optimizer_seconds += gated.solution.seconds;
     bool kept_new = true;
@@ -355,6 +421,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     estimate = gated.solution.poses;
     chain.Reposition(estimate);
   }
+  stats.motion_noise_scale = scale;
   stats.submaps = static_cast<int>(submaps.size());
   if (progress) progress(n);
   for (const PoseGraphEdge& edge : edges) {

@@ -70,6 +70,15 @@ struct LoopClosureOptions {
   double odometry_sigma_radians_per_radian = 0.02;
   double loop_sigma_meters = 0.05;
   double loop_sigma_radians = 0.01;
+  // In the optimization the motion edges' variances are multiplied by the smallest factor under
+  // which every accepted closure's innovation (how far it landed from where the graph predicted
+  // it) lies in its 99 % region, within these bounds: a filter better than the model above is
+  // then not bent by its closures' match noise, one that drifts more gets the slack to be
+  // corrected. The search window and the gate keep the model as it is (a factor that shrank
+  // there would hide the closures that should raise it).
+  bool adapt_motion_noise = true;
+  double min_motion_noise_scale = 1e-4;
+  double max_motion_noise_scale = 1.0;
   // A closure whose whitened residual after optimization exceeds this is contradicted by the
   // others and dropped.
   double max_residual_sigmas = 5.0;
@@ -87,6 +96,7 @@ struct LoopClosureStatistics {
   int rejected = 0;  // closures dropped as inconsistent with the other closures
   int gated = 0;     // closures not added: inconsistent with the motion since (gate_sigmas)
   int optimizations = 0;
+  double motion_noise_scale = 1.0;  // the motion edges' variance factor at the end
   double search_seconds = 0.0;
   double optimizer_seconds = 0.0;
   // Whitened residual norm of each kept closure after the last optimization.

@@ -190,7 +190,10 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                                             "odometry_sigma_radians",
                                             "odometry_sigma_radians_per_radian",
                                             "loop_sigma_meters",
-                                            "loop_sigma_radians"}));
+                                            "loop_sigma_radians",
+                                            "adapt_motion_noise",
+                                            "min_motion_noise_scale",
+                                            "max_motion_noise_scale"}));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "enabled", &options->pose_graph));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "submap_travel_meters", &l.submap_travel_meters));
@@ -226,7 +229,11 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "odometry_sigma_radians_per_radian",
                                               &l.odometry_sigma_radians_per_radian));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "loop_sigma_meters", &l.loop_sigma_meters));
-  return yaml::ReadOptional(*node, "loop_sigma_radians", &l.loop_sigma_radians);
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "loop_sigma_radians", &l.loop_sigma_radians));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "adapt_motion_noise", &l.adapt_motion_noise));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "min_motion_noise_scale", &l.min_motion_noise_scale));
+  return yaml::ReadOptional(*node, "max_motion_noise_scale", &l.max_motion_noise_scale);
 }
 
 Status ReadLaserOdometry(const yaml::Node& root, LaserOdometryOptions* l) {
