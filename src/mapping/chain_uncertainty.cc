@@ -45,8 +45,8 @@ void ChainUncertainty::AccumulateEdge(std::size_t k) {
   sum_qpp_[k + 1] = sum_qpp_[k] + q * p * p.transpose();
 }
 
-Eigen::Matrix3d ChainUncertainty::Relative(int j, int i) const {
-  SEMCHAIN_CHECK(0 <= j && j <= i && i < size());
+Eigen::Matrix3d ChainUncertainty::Relative(int j, int i, int frame) const {
+  SEMCHAIN_CHECK(0 <= j && j <= i && i < size() && 0 <= frame && frame < size());
   const auto a = static_cast<std::size_t>(j);
   const auto b = static_cast<std::size_t>(i);
   const double s = sum_s_[b] - sum_s_[a];
@@ -66,9 +66,10 @@ Eigen::Matrix3d ChainUncertainty::Relative(int j, int i) const {
   world.topRightCorner<2, 1>() = perpendicular * lever;
   world.bottomLeftCorner<1, 2>() = (perpendicular * lever).transpose();
   world(2, 2) = q;
-  // Into node j's frame: its heading rotates the position block.
+  // Into the frame's node: its heading rotates the position block.
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  rotation.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(-headings_[a]).toRotationMatrix();
+  rotation.topLeftCorner<2, 2>() =
+      Eigen::Rotation2Dd(-headings_[static_cast<std::size_t>(frame)]).toRotationMatrix();
   return rotation * world * rotation.transpose();
 }
 

@@ -30,8 +30,10 @@ class ChainUncertainty {
 
   int size() const { return static_cast<int>(positions_.size()); }
 
-  // Covariance of node i's pose (x, y, θ) relative to node j ≤ i, expressed in node j's frame.
-  Eigen::Matrix3d Relative(int j, int i) const;
+  // Covariance of node i's pose (x, y, θ) relative to node j ≤ i, expressed in node j's frame,
+  // or in node 'frame''s when given.
+  Eigen::Matrix3d Relative(int j, int i) const { return Relative(j, i, j); }
+  Eigen::Matrix3d Relative(int j, int i, int frame) const;
 
  private:
   void AccumulateEdge(std::size_t k);  // prefix sums up to and including edge k

@@ -104,5 +104,17 @@ TEST(ChainUncertaintyTest, RepositioningMovesTheLeverArms) {
   EXPECT_LT(chain.Relative(0, 10)(1, 1), 0.5 * lateral_straight);
 }
 
+TEST(ChainUncertaintyTest, AnotherNodesFrameRotatesThePositionBlock) {
+  const std::vector<Pose2> path = WindingPath();
+  ChainUncertainty chain(path.front());
+  for (std::size_t k = 1; k < path.size(); ++k) chain.Append(path[k], kSigmaMeters, kSigmaRadians);
+  const int last = chain.size() - 1;
+  const double turn = path[20].theta - path[5].theta;  // from node 20's frame into node 5's
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  rotation.topLeftCorner<2, 2>() << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
+  const Eigen::Matrix3d expected = rotation * chain.Relative(20, last) * rotation.transpose();
+  EXPECT_TRUE(chain.Relative(20, last, 5).isApprox(expected, 1e-12));
+}
+
 }  // namespace
 }  // namespace semchain::mapping

@@ -1,7 +1,6 @@
 #include "mapping/loop_closure.h"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -157,25 +156,21 @@ PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
   return edge;
 }
 
-// Covariance of node i relative to submap 'first' in the submap's frame, from the motion edges
-// since the later of the submap and the last accepted closure ('anchor'; the closure ties the
-// path before it to the map, up to the closure's own uncertainty).
-// 'scale' multiplies the motion edges' part (1: the model as it is, 0: the closures' part alone).
-Eigen::Matrix3d RelativeUncertainty(const ChainUncertainty& chain,
-                                    const std::vector<Pose2>& estimate, int first, int anchor,
-                                    int i, double scale, const LoopClosureOptions& options) {
+// Uncertainty of node i relative to submap 'first', in the submap's frame: the motion edges'
+// part, since the later of the submap and the last accepted closure ('anchor'; the closure ties
+// the path before it to the map, up to the closure's own uncertainty), and that closure's part.
+struct RelativeUncertainty {
+  Eigen::Matrix3d motion;
+  Eigen::Matrix3d fixed;
+  Eigen::Matrix3d Total() const { return motion + fixed; }
+};
+
+RelativeUncertainty UncertaintyToSubmap(const ChainUncertainty& chain, int first, int anchor, int i,
+                                        const LoopClosureOptions& options) {
   const int from = std::max(first, anchor);
-  Eigen::Matrix3d covariance = scale * chain.Relative(from, i);
-  if (from != first) {
-    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-    rotation.topLeftCorner<2, 2>() =
-        Eigen::Rotation2Dd(estimate[static_cast<std::size_t>(from)].theta -
-                           estimate[static_cast<std::size_t>(first)].theta)
-            .toRotationMatrix();
-    covariance = rotation * covariance * rotation.transpose();
-    covariance.diagonal() += LoopVariances(options);
-  }
-  return covariance;
+  RelativeUncertainty uncertainty{chain.Relative(from, i, first), Eigen::Matrix3d::Zero()};
+  if (from != first) uncertainty.fixed.diagonal() = LoopVariances(options);
+  return uncertainty;
 }
 
 SearchWindow WindowFor(const Eigen::Matrix3d& covariance, const LoopClosureOptions& options) {
@@ -194,15 +189,12 @@ SearchWindow WindowFor(const Eigen::Matrix3d& covariance, const LoopClosureOptio
   return window;
 }
 
-// Squared Mahalanobis distance of the closure 'measured' from 'predicted' (both node i in the
-// submap's frame) under the chain's covariance plus the closure's own.
-double SquaredMahalanobis(const Pose2& measured, const Pose2& predicted,
-                          const Eigen::Matrix3d& chain_covariance,
-                          const LoopClosureOptions& options) {
-  const Eigen::Vector3d error(measured.x - predicted.x, measured.y - predicted.y,
-                              NormalizeAngle(measured.theta - predicted.theta));
-  Eigen::Matrix3d covariance = chain_covariance;
-  covariance.diagonal() += LoopVariances(options);
+// (x, y, θ) of 'a' minus those of 'b', the heading wrapped.
+Eigen::Vector3d PoseError(const Pose2& a, const Pose2& b) {
+  return {a.x - b.x, a.y - b.y, NormalizeAngle(a.theta - b.theta)};
+}
+
+double SquaredMahalanobis(const Eigen::Vector3d& error, const Eigen::Matrix3d& covariance) {
   return error.dot(covariance.ldlt().solve(error));
 }
 
@@ -215,12 +207,9 @@ double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
     return estimate[static_cast<std::size_t>(node)];
   };
   const Pose2 implied = (at(a.from) * a.relative).Between(at(b.from) * b.relative);
-  const Pose2 chained = at(a.to).Between(at(b.to));
-  const Eigen::Vector3d error(implied.x - chained.x, implied.y - chained.y,
-                              NormalizeAngle(implied.theta - chained.theta));
   Eigen::Matrix3d covariance = chain.Relative(a.to, b.to);
   covariance.diagonal() += 2.0 * LoopVariances(options);
-  return error.dot(covariance.ldlt().solve(error));
+  return SquaredMahalanobis(PoseError(implied, at(a.to).Between(at(b.to))), covariance);
 }
 
 // What an accepted closure said that the graph did not already know: its error against the
@@ -241,8 +230,7 @@ double MotionNoiseScale(const std::vector<Innovation>& innovations, double min_s
   const auto worst = [&innovations](double scale) {
     double largest = 0.0;
     for (const Innovation& v : innovations) {
-      const Eigen::Matrix3d covariance = scale * v.motion + v.fixed;
-      largest = std::max(largest, v.error.dot(covariance.ldlt().solve(v.error)));
+      largest = std::max(largest, SquaredMahalanobis(v.error, scale * v.motion + v.fixed));
     }
     return largest;
   };
@@ -326,15 +314,15 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     bool searched = false;
     Submap* best_submap = nullptr;
     BranchAndBoundResult best;
-    Eigen::Matrix3d best_covariance = Eigen::Matrix3d::Zero();
+    RelativeUncertainty best_uncertainty;
     for (Submap& submap : submaps) {
       if (!submap.finished || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
                                   options.min_loop_travel_meters) {
         continue;
       }
-      const Eigen::Matrix3d covariance =
-          RelativeUncertainty(chain, estimate, submap.first, anchor, node, 1.0, options);
-      SearchWindow window = WindowFor(covariance, options);
+      const RelativeUncertainty uncertainty =
+          UncertaintyToSubmap(chain, submap.first, anchor, node, options);
+      SearchWindow window = WindowFor(uncertainty.Total(), options);
       window.center = estimate[static_cast<std::size_t>(submap.first)].Between(estimate[i]);
       const double reach = window.linear_window_meters + submap.radius;
       if ((window.center.translation() - submap.center).norm() > reach) continue;
@@ -346,7 +334,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
       if (match.found && match.score > best.score) {
         best = match;
         best_submap = &submap;
-        best_covariance = covariance;
+        best_uncertainty = uncertainty;
       }
     }
     stats.search_seconds += SecondsSince(search_start);
@@ -363,9 +351,16 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
                                      options.loop_sigma_radians);
     closure.loop_closure = true;
     const double gate = options.gate_sigmas * options.gate_sigmas;
-    const Pose2 predicted = estimate[static_cast<std::size_t>(closure.from)].Between(estimate[i]);
+    // The closure's innovation: where it puts the node against where the graph does, and the
+    // closure's own variances beside those of the path it had to be explained by.
+    Innovation innovation;
+    innovation.error = PoseError(
+        closure.relative, estimate[static_cast<std::size_t>(closure.from)].Between(estimate[i]));
+    innovation.motion = best_uncertainty.motion;
+    innovation.fixed = best_uncertainty.fixed;
+    innovation.fixed.diagonal() += LoopVariances(options);
     if (options.gate_sigmas > 0.0 &&
-        SquaredMahalanobis(closure.relative, predicted, best_covariance, options) > gate) {
+        SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed) > gate) {
       // Off the motion's prediction: a lone aliased match, or drift the motion model does not
       // cover. Drift makes the next closures agree with this one; aliasing does not.
       const bool confirmed =
@@ -385,17 +380,6 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     edges.push_back(closure);
     const std::size_t closure_index = edges.size() - 1;
     if (options.adapt_motion_noise) {
-      Innovation innovation;
-      innovation.error =
-          Eigen::Vector3d(closure.relative.x - predicted.x, closure.relative.y - predicted.y,
-                          NormalizeAngle(closure.relative.theta - predicted.theta));
-      const Eigen::Matrix3d at_unit_scale =
-          RelativeUncertainty(chain, estimate, closure.from, anchor, node, 1.0, options);
-      const Eigen::Matrix3d fixed_part =
-          RelativeUncertainty(chain, estimate, closure.from, anchor, node, 0.0, options);
-      innovation.motion = at_unit_scale - fixed_part;
-      innovation.fixed = fixed_part;
-      innovation.fixed.diagonal() += LoopVariances(options);
       innovations.push_back(innovation);
       scale = MotionNoiseScale(innovations, options.min_motion_noise_scale,
                                options.max_motion_noise_scale);
