@@ -34,6 +34,7 @@ struct BenchLocalizeArgs {
   std::optional<int> filter_seed;
   std::optional<double> window_s;
   std::optional<double> alpha;
+  std::string resampling = "multinomial";
 };
 
 nlohmann::json OptionalNumber(const std::optional<double>& value) {
@@ -160,6 +161,8 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
     return ReportError(Status::Error("bench localize: --protocol must be semchain or nav2, not '" +
                                      args.protocol + "'"));
   }
+  // How AMCL resamples is the filter's own choice, not a parameter the peer's set-up fixes.
+  options.amcl.systematic_resampling = args.resampling == "systematic";
   std::string error;
   for (const std::string& method : args.methods) {
     options.method = method;
@@ -209,6 +212,7 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
       {"timestamps_usable", timed},
       {"alpha", options.amcl.alpha1},
       {"max_particles", options.amcl.max_particles},
+      {"resampling", args.resampling},
       {"window", timed ? Fixed(options.window_seconds, 0) + " s"
                        : std::to_string(options.window_scans) + " scans"},
       {"map", {{"width", map.width}, {"height", map.height}, {"resolution", map.resolution}}},
@@ -263,6 +267,11 @@ void AddBenchLocalize(CLI::App& bench, int& exit_code) {
       ->add_option("--alpha", args->alpha,
                    "Set AMCL alpha1..alpha4 (default nav2's 0.2, meant for wheel odometry)")
       ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--resampling", args->resampling,
+                   "AMCL resampling: multinomial (default, nav2's independent draws) or "
+                   "systematic (one comb of evenly spaced draws, lower variance)")
+      ->check(CLI::IsMember({"multinomial", "systematic"}));
   command->callback([args, &exit_code] { exit_code = RunBenchLocalize(*args); });
 }
 

@@ -164,6 +164,13 @@ void Amcl::Resample() {
   std::vector<Particle>& next = next_particles_;
   next.clear();
   next.reserve(static_cast<std::size_t>(options_.max_particles));
+  if (options_.systematic_resampling) {
+    // A random prefix of a shuffled comb is a draw without replacement from it, so whatever
+    // count KLD stops at keeps the comb's low variance.
+    comb_ = SystematicDraws(sampler, static_cast<std::size_t>(options_.max_particles),
+                            std::min(unit(rng_), std::nextafter(1.0, 0.0)));
+    std::shuffle(comb_.begin(), comb_.end(), rng_);
+  }
   int limit = SampleLimit(0);
   while (static_cast<int>(next.size()) < options_.max_particles) {
     Pose2 pose;
@@ -171,7 +178,10 @@ void Amcl::Resample() {
       pose = map_.RandomFreePose(rng_);
       ++counters_.random_particles;
     } else {
-      pose = particles_[sampler.IndexOf(unit(rng_) * sampler.total())].pose;
+      const std::size_t index = options_.systematic_resampling
+                                    ? comb_[next.size()]
+                                    : sampler.IndexOf(unit(rng_) * sampler.total());
+      pose = particles_[index].pose;
     }
     next.push_back({pose, 1.0});
     if (bins_.Insert(pose)) limit = SampleLimit(bins_.count());

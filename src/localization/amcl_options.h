@@ -88,6 +88,11 @@ struct AmclOptions {
   // ROS amcl's selective_resampling (off by default, as there): resample only when
   // N_eff < N / 2 (Doucet; seed 003 eq. 3).
   bool selective_resampling = false;
+  // How resampling picks the survivors. false (nav2 pf_update_resample): independent draws
+  // from the weights (multinomial). true: a systematic comb of max_particles evenly spaced
+  // draws with one random offset, taken in random order until KLD's bound is reached, so a
+  // particle of weight w survives about w·N times instead of Binomial(N, w) times.
+  bool systematic_resampling = false;
 
   // Filter updates happen when odometry moved this far (per axis, as nav2) or turned this much.
   double update_min_d = 0.25;

@@ -113,6 +113,21 @@ TEST_F(AmclTest, GlobalLocalizationConvergesOnAnAsymmetricMap) {
   EXPECT_FALSE(amcl.FailureDetected());
 }
 
+// Systematic resampling (an option; nav2 draws independently) must localize as well.
+TEST_F(AmclTest, SystematicResamplingAlsoLocalizesGlobally) {
+  AmclOptions options;
+  options.systematic_resampling = true;
+  Amcl amcl(map_, options, MakeRng(5));
+  amcl.InitializeGlobal();
+  Drive(amcl);
+  const AmclEstimate estimate = amcl.Estimate();
+  EXPECT_TRUE(Near(estimate.pose, run_.truth.back()))
+      << estimate.pose << " vs " << run_.truth.back();
+  EXPECT_GT(estimate.cluster_weight, 0.9);
+  EXPECT_LT(estimate.particles, 1000);
+  EXPECT_GE(estimate.particles, 500);
+}
+
 // nav2's convergence test: every particle within convergence_distance (0.5 m) of the mean in
 // x and in y.
 TEST_F(AmclTest, ConvergenceTestIsNav2s) {

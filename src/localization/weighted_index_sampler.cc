@@ -34,4 +34,15 @@ std::size_t WeightedIndexSampler::IndexOf(double r) const {
   return i;
 }
 
+std::vector<std::size_t> SystematicDraws(const WeightedIndexSampler& sampler, std::size_t count,
+                                         double offset) {
+  SEMCHAIN_CHECK(offset >= 0.0 && offset < 1.0);
+  std::vector<std::size_t> draws(count);
+  const double spacing = sampler.total() / static_cast<double>(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    draws[k] = sampler.IndexOf((offset + static_cast<double>(k)) * spacing);
+  }
+  return draws;
+}
+
 }  // namespace semchain::localization

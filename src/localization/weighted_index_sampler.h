@@ -28,4 +28,10 @@ class WeightedIndexSampler {
   double slices_per_unit_ = 0.0;    // n / total
 };
 
+// Systematic resampling's comb: 'count' draws at r = (offset + k) · total / count, k = 0 … count−1,
+// for one offset in [0, 1). Index i is drawn ⌊c·wᵢ/W⌋ or ⌈c·wᵢ/W⌉ times (W the total), where
+// independent draws give Binomial(c, wᵢ/W) times. The indices come out in ascending order.
+std::vector<std::size_t> SystematicDraws(const WeightedIndexSampler& sampler, std::size_t count,
+                                         double offset);
+
 }  // namespace semchain::localization
