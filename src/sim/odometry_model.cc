@@ -49,11 +49,15 @@ OdometryIncrement SampleIncrement(const OdometryIncrement& increment,
   return {increment.rot1 - e_rot1, increment.trans - e_trans, increment.rot2 - e_rot2};
 }
 
-OdometrySimulator::OdometrySimulator(const std::array<double, 4>& alphas, const Pose2& true_start)
-    : alphas_(alphas), truth_(true_start), odometry_(true_start) {}
+OdometrySimulator::OdometrySimulator(const std::array<double, 4>& alphas, const Pose2& true_start,
+                                     const OdometryScaleError& scale_error)
+    : alphas_(alphas), scale_error_(scale_error), truth_(true_start), odometry_(true_start) {}
 
 const Pose2& OdometrySimulator::Step(const Pose2& truth, Rng& rng) {
-  const OdometryIncrement increment = ComputeIncrement(truth_, truth);
+  OdometryIncrement increment = ComputeIncrement(truth_, truth);
+  increment.rot1 *= 1.0 + scale_error_.turn;
+  increment.trans *= 1.0 + scale_error_.distance;
+  increment.rot2 *= 1.0 + scale_error_.turn;
   odometry_ = ApplyIncrement(odometry_, SampleIncrement(increment, alphas_, rng));
   truth_ = truth;
   return odometry_;

@@ -16,6 +16,13 @@
 // other way round: the true motion is perturbed and added to the odometry pose.
 namespace semchain::sim {
 
+// Systematic odometry error: fractions by which the odometry over-reads translations and
+// rotations (a wheel radius 1 % too large gives distance = 0.01).
+struct OdometryScaleError {
+  double distance = 0.0;
+  double turn = 0.0;
+};
+
 struct OdometryIncrement {
   double rot1 = 0.0;   // radians
   double trans = 0.0;  // metres
@@ -38,7 +45,8 @@ OdometryIncrement SampleIncrement(const OdometryIncrement& increment,
 // pose, so a map built from it is in world coordinates (DESIGN.md §3.1).
 class OdometrySimulator {
  public:
-  OdometrySimulator(const std::array<double, 4>& alphas, const Pose2& true_start);
+  OdometrySimulator(const std::array<double, 4>& alphas, const Pose2& true_start,
+                    const OdometryScaleError& scale_error = {});
 
   // Moves the robot truly to 'truth' and returns the odometry pose after the move.
   const Pose2& Step(const Pose2& truth, Rng& rng);
@@ -46,6 +54,7 @@ class OdometrySimulator {
 
  private:
   std::array<double, 4> alphas_;
+  OdometryScaleError scale_error_;
   Pose2 truth_;
   Pose2 odometry_;
 };

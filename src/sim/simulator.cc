@@ -113,7 +113,8 @@ Status WriteRun(const Scene& scene, const std::vector<TrajectorySample>& samples
   const World& world = scene.world();
   Rng lidar_rng = StreamRng(options, SimStream::kLidar);
   Rng odometry_rng = StreamRng(options, SimStream::kOdometry);
-  OdometrySimulator odometry(world.robot.odometry_noise, samples.front().pose);
+  OdometrySimulator odometry(world.robot.odometry_noise, samples.front().pose,
+                             world.robot.odometry_scale_error);
   std::optional<FrameRecorder> frames;
   if (options.write_frames) {
     frames.emplace(scene, options.seed, dir);

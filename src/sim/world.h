@@ -10,6 +10,7 @@
 
 #include "core/pose2.h"
 #include "core/status.h"
+#include "sim/odometry_model.h"
 
 // The simulated world (DESIGN.md §3.1, format §5.2).
 namespace semchain::sim {
@@ -139,6 +140,10 @@ struct RobotSpec {
   CameraSpec camera;
   // Thrun's odometry model α1..α4 (Probabilistic Robotics, table 5.6).
   std::array<double, 4> odometry_noise = {0.05, 0.05, 0.05, 0.05};
+  // Systematic odometry error, as a real robot's wrong wheel radius and wheel base give: the
+  // odometry reads every translation (1 + distance) times and every rotation (1 + turn) times
+  // its true size before the noise above. 0 = unbiased (the bundled worlds before the campus).
+  OdometryScaleError odometry_scale_error;
   double max_speed = 0.5;      // m/s
   double max_turn_rate = 1.0;  // rad/s
   double scan_rate_hz = 10.0;  // lidar and odometry records per second

@@ -18,6 +18,7 @@
 //   objects / obstacles: lists of {class (objects only), x, y, yaw, radius | width + depth,
 //     height, base_height, color: [r, g, b], texture_seed, plain (flat colour: true/false)},
 //   robot (required): {start: [x, y, theta] (required), radius, odometry_noise: [α1..α4],
+//     odometry_scale_error: [distance, turn] (systematic over-reading fractions),
 //     max_speed, max_turn_rate, scan_rate_hz, frame_rate_hz (≤ scan_rate_hz),
 //     lidar: {height, beams, fov_deg, max_range, noise_std, forward_offset},
 //     camera: {height, fov_deg, width, height_px, max_range, pitch_deg, forward_offset,

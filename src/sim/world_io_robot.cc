@@ -1,4 +1,5 @@
 // The robot and detection-model sections of a world file.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -82,12 +83,27 @@ Status ParseOdometryNoise(const Node& robot, std::array<double, 4>* alphas) {
   return Status::Ok();
 }
 
+Status ParseOdometryScaleError(const Node& robot, OdometryScaleError* error) {
+  if (!robot.Has("odometry_scale_error")) return Status::Ok();
+  Result<Node> node = robot.Get("odometry_scale_error");
+  Result<std::vector<double>> values = node->AsDoubleList(2);
+  if (!values.ok()) return values.status();
+  for (const double value : *values) {
+    // A factor 1 + e of zero or less would reverse or freeze the odometry.
+    if (!(std::abs(value) < 0.5)) {
+      return node->Error("expected [distance, turn] fractions, each within ±0.5");
+    }
+  }
+  *error = {(*values)[0], (*values)[1]};
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status ParseRobot(const Node& node, RobotSpec* robot) {
-  SEMCHAIN_RETURN_IF_ERROR(
-      node.CheckKeys({"start", "radius", "lidar", "camera", "odometry_noise", "max_speed",
-                      "max_turn_rate", "scan_rate_hz", "frame_rate_hz"}));
+  SEMCHAIN_RETURN_IF_ERROR(node.CheckKeys({"start", "radius", "lidar", "camera", "odometry_noise",
+                                           "odometry_scale_error", "max_speed", "max_turn_rate",
+                                           "scan_rate_hz", "frame_rate_hz"}));
   SEMCHAIN_RETURN_IF_ERROR(ParseStart(node, &robot->start));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "radius", &robot->radius, false));
   if (node.Has("lidar")) SEMCHAIN_RETURN_IF_ERROR(ParseLidar(*node.Get("lidar"), &robot->lidar));
@@ -95,6 +111,7 @@ Status ParseRobot(const Node& node, RobotSpec* robot) {
     SEMCHAIN_RETURN_IF_ERROR(ParseCamera(*node.Get("camera"), &robot->camera));
   }
   SEMCHAIN_RETURN_IF_ERROR(ParseOdometryNoise(node, &robot->odometry_noise));
+  SEMCHAIN_RETURN_IF_ERROR(ParseOdometryScaleError(node, &robot->odometry_scale_error));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "max_speed", &robot->max_speed, false));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "max_turn_rate", &robot->max_turn_rate, false));
   SEMCHAIN_RETURN_IF_ERROR(ReadPositive(node, "scan_rate_hz", &robot->scan_rate_hz, false));

@@ -72,6 +72,7 @@ TEST(WorldIoTest, ParsesEverySection) {
   EXPECT_DOUBLE_EQ(world->robot.lidar.noise_std, 0.02);
   EXPECT_EQ(world->robot.camera.width, 160);
   EXPECT_DOUBLE_EQ(world->robot.odometry_noise[3], 0.04);
+  EXPECT_DOUBLE_EQ(world->robot.odometry_scale_error.distance, 0.0);  // unbiased by default
   EXPECT_DOUBLE_EQ(world->detection.miss_probability, 0.1);
   EXPECT_DOUBLE_EQ(world->detection.confusion_probability, 0.02);  // default kept
   EXPECT_EQ(world->mapping_route.size(), 5u);
@@ -121,6 +122,17 @@ TEST(WorldIoTest, UnknownClassAndClassOnObstacleAreErrors) {
                      "o.yaml");
   ASSERT_FALSE(world.ok());
   EXPECT_THAT(world.status().message(), HasSubstr("o.yaml:10: obstacles[0].class: unknown key"));
+}
+
+TEST(WorldIoTest, OdometryScaleErrorIsReadAndBounded) {
+  const Result<World> world =
+      ParseWorld(WithLine(16, "  odometry_scale_error: [0.02, -0.01]"), "e.yaml");
+  ASSERT_TRUE(world.ok()) << world.status().message();
+  EXPECT_DOUBLE_EQ(world->robot.odometry_scale_error.distance, 0.02);
+  EXPECT_DOUBLE_EQ(world->robot.odometry_scale_error.turn, -0.01);
+  EXPECT_THAT(
+      ParseWorld(WithLine(16, "  odometry_scale_error: [0.02, -1.0]"), "e.yaml").status().message(),
+      HasSubstr("e.yaml:16: robot.odometry_scale_error: expected [distance, turn] fractions"));
 }
 
 TEST(WorldIoTest, BadValuesAreErrors) {
