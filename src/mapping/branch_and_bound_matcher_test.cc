@@ -22,6 +22,16 @@ std::vector<Eigen::Vector2d> ScanPoints(const Pose2& pose, int step = 4) {
   return points;
 }
 
+// The branch-and-bound search must return what the exhaustive search of its discretisation does.
+void ExpectTheSameOptimum(const BranchAndBoundResult& fast,
+                          const BranchAndBoundResult& exhaustive) {
+  ASSERT_TRUE(fast.found);
+  EXPECT_DOUBLE_EQ(fast.score, exhaustive.score);
+  EXPECT_NEAR(fast.pose.x, exhaustive.pose.x, 1e-9);
+  EXPECT_NEAR(fast.pose.y, exhaustive.pose.y, 1e-9);
+  EXPECT_NEAR(fast.pose.theta, exhaustive.pose.theta, 1e-9);
+}
+
 class BranchAndBoundTest : public ::testing::Test {
  protected:
   BranchAndBoundTest() : grid_(MakeMatchGrid(testing::RoomMap())) {}
@@ -42,17 +52,72 @@ TEST_F(BranchAndBoundTest, FindsTheExhaustiveOptimumOfTheSameDiscretisation) {
     SearchWindow window{center, 0.6, 0.2};
     const BranchAndBoundResult exhaustive = matcher.MatchExhaustive(points, window);
     const BranchAndBoundResult fast = matcher.Match(points, window, 0.0);
-    ASSERT_TRUE(fast.found);
-    EXPECT_DOUBLE_EQ(fast.score, exhaustive.score);
-    EXPECT_NEAR(fast.pose.x, exhaustive.pose.x, 1e-9);
-    EXPECT_NEAR(fast.pose.y, exhaustive.pose.y, 1e-9);
-    EXPECT_NEAR(fast.pose.theta, exhaustive.pose.theta, 1e-9);
+    ExpectTheSameOptimum(fast, exhaustive);
     // The truth is within a cell and an angular step of the optimum, and the bound pruned.
     EXPECT_NEAR(fast.pose.x, -1.13, 0.06);
     EXPECT_NEAR(fast.pose.y, 0.42, 0.06);
     EXPECT_NEAR(fast.pose.theta, 0.31, 0.021);
     EXPECT_LT(fast.nodes_scored, exhaustive.nodes_scored / 4);
   }
+}
+
+// RoomMap with its first 'columns' columns of cells never observed.
+MapImage RoomMapWithUnknownWest(int columns) {
+  MapImage map = testing::RoomMap();
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < columns; ++x) map.cells[static_cast<std::size_t>(y * map.width + x)] = -1;
+  }
+  return map;
+}
+
+// With unknown_value u, cells the map never observed (and everything outside it) score u,
+// observed free cells 0 and returns on walls 1: a map whose west half is unknown.
+TEST(MatchGridTest, UnknownCellsAndTheOutsideScoreTheUnknownValue) {
+  const MapImage map = RoomMapWithUnknownWest(testing::RoomMap().width / 2);
+  MatchGridOptions options;
+  options.unknown_value = 0.6;
+  const MatchGrid grid = MakeMatchGrid(map, options);
+  const MatchGrid plain = MakeMatchGrid(map);
+  int unknown_far = 0, free_far = 0;
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      const float m = grid.At(x, y);
+      const float m0 = plain.At(x, y);
+      if (map.At(x, y) < 0) {
+        EXPECT_FLOAT_EQ(m, std::max(m0, 0.6f)) << x << ", " << y;
+        unknown_far += m0 == 0.0f;
+      } else {
+        EXPECT_FLOAT_EQ(m, m0) << x << ", " << y;
+        free_far += map.At(x, y) == 0 && m0 == 0.0f;
+      }
+    }
+  }
+  EXPECT_GT(unknown_far, 1000);
+  EXPECT_GT(free_far, 1000);
+  EXPECT_FLOAT_EQ(grid.At(-3, 5), 0.6f);
+  EXPECT_FLOAT_EQ(grid.At(map.width + 10, 5), 0.6f);
+  EXPECT_FLOAT_EQ(plain.At(-3, 5), 0.0f);
+}
+
+// The precomputation grids must still bound every score when unknown cells and the outside
+// count u: the search equals the exhaustive one, here with part of the scan off the map.
+TEST(MatchGridTest, BranchAndBoundWithUnknownCellsFindsTheExhaustiveOptimum) {
+  MatchGridOptions grid_options;
+  grid_options.unknown_value = 0.65;
+  const MatchGrid grid =
+      MakeMatchGrid(RoomMapWithUnknownWest(testing::RoomMap().width / 3), grid_options);
+  BranchAndBoundOptions options;
+  options.branch_and_bound_depth = 4;
+  options.angular_step_radians = 0.02;
+  const BranchAndBoundMatcher matcher(grid, options);
+  // From near the west wall: some returns land beyond the map's edge.
+  std::vector<Eigen::Vector2d> points = ScanPoints(Pose2(-4.6, 0.3, 2.9));
+  points.emplace_back(14.0, 0.0);  // beyond the map whatever the pose
+  const SearchWindow window{Pose2(-4.4, 0.5, 2.8), 0.6, 0.2};
+  const BranchAndBoundResult exhaustive = matcher.MatchExhaustive(points, window);
+  const BranchAndBoundResult fast = matcher.Match(points, window, 0.0);
+  ExpectTheSameOptimum(fast, exhaustive);
+  EXPECT_GT(fast.score, 0.65);
 }
 
 TEST_F(BranchAndBoundTest, SkipsTheHeadingsSearchedBefore) {

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <memory>
 #include <optional>
+#include <unordered_set>
 
 #include "core/angles.h"
 #include "core/check.h"
@@ -67,6 +69,14 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "motion noise scales must be positive and max >= min";
     return false;
   }
+  if (!(min_known_fraction >= 0.0 && min_known_fraction <= 1.0)) {
+    *error = "min_known_fraction must be in [0, 1]";
+    return false;
+  }
+  if (!(query_travel_meters >= 0.0) || !(query_cell_meters > 0.0)) {
+    *error = "query_travel_meters must be >= 0 and query_cell_meters positive";
+    return false;
+  }
   if (!(max_residual_sigmas > 0.0)) {
     *error = "max_residual_sigmas must be positive";
     return false;
@@ -100,8 +110,10 @@ struct Submap {
 };
 
 void Build(Submap* submap, const LoopClosureOptions& options) {
-  submap->match_grid =
-      std::make_unique<MatchGrid>(MakeMatchGrid(GridToMapImage(submap->grid), options.match_grid));
+  const MapImage image = GridToMapImage(submap->grid);
+  MatchGridOptions search_options = options.match_grid;
+  if (options.unknown_is_neutral) search_options.unknown_value = options.min_score;
+  submap->match_grid = std::make_unique<MatchGrid>(MakeMatchGrid(image, search_options));
   submap->matcher = std::make_unique<BranchAndBoundMatcher>(*submap->match_grid, options.matcher);
 }
 
@@ -135,6 +147,65 @@ void Acquire(Submap* wanted, const Submap* keep, std::uint64_t tick, std::vector
   }
 }
 
+// The match points of node i's scan and, with query_travel_meters > 0, of the scans of the nodes
+// before it within that much travel, in node i's frame (placed by the graph's estimate), at most
+// one per query_cell_meters cell. Down a corridor one scan sees few of the features that tell
+// places apart (a 180° laser mostly sees the walls beside it); a short stretch of the local map
+// sees each several times.
+MatchPoints QueryPoints(const std::vector<const PreparedScan*>& scans,
+                        const std::vector<Pose2>& estimate, const std::vector<double>& travel,
+                        std::size_t i, const LoopClosureOptions& options) {
+  MatchPoints own =
+      SelectMatchPoints(*scans[i], options.match_max_range_meters, options.match_beam_step);
+  if (options.query_travel_meters <= 0.0) return own;
+  MatchPoints query;
+  std::unordered_set<std::int64_t> cells;
+  const double per_cell = 1.0 / options.query_cell_meters;
+  const auto add = [&](const Eigen::Vector2d& point) {
+    const auto cx = static_cast<std::int64_t>(std::floor(point.x() * per_cell));
+    const auto cy = static_cast<std::int64_t>(std::floor(point.y() * per_cell));
+    if (cells.insert((cx << 32) ^ (cy & 0xffffffff)).second) query.points.push_back(point);
+  };
+  for (const Eigen::Vector2d& point : own.points) add(point);
+  for (std::size_t j = i; j-- > 0 && travel[i] - travel[j] <= options.query_travel_meters;) {
+    const Eigen::Isometry2d to_node = estimate[i].Between(estimate[j]).ToIsometry();
+    for (const Eigen::Vector2d& point :
+         SelectMatchPoints(*scans[j], options.match_max_range_meters, options.match_beam_step)
+             .points) {
+      add(to_node * point);
+    }
+  }
+  return query;
+}
+
+// How a query placed at 'pose' agrees with what the submap observed: the share of its points on
+// observed cells and their mean M.
+struct KnownAgreement {
+  double fraction = 0.0;
+  double score = 0.0;
+};
+
+KnownAgreement AgreementOnKnownCells(const Submap& submap,
+                                     const std::vector<Eigen::Vector2d>& points,
+                                     const Pose2& pose) {
+  KnownAgreement agreement;
+  if (points.empty()) return agreement;
+  const Eigen::Isometry2d transform = pose.ToIsometry();
+  int known = 0;
+  double sum = 0.0;
+  for (const Eigen::Vector2d& point : points) {
+    const Eigen::Vector2d world = transform * point;
+    const GridCell* cell = submap.grid.Find(submap.grid.CellOf(world));
+    if (cell == nullptr || !cell->Known()) continue;
+    ++known;
+    const Eigen::Vector2i match_cell = submap.match_grid->CellOf(world);
+    sum += submap.match_grid->At(match_cell.x(), match_cell.y());
+  }
+  agreement.fraction = static_cast<double>(known) / static_cast<double>(points.size());
+  agreement.score = known > 0 ? sum / static_cast<double>(known) : 0.0;
+  return agreement;
+}
+
 Eigen::Vector3d LoopVariances(const LoopClosureOptions& options) {
   return Eigen::Vector3d(options.loop_sigma_meters * options.loop_sigma_meters,
                          options.loop_sigma_meters * options.loop_sigma_meters,
@@ -160,8 +231,8 @@ PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
 // part, since the later of the submap and the last accepted closure ('anchor'; the closure ties
 // the path before it to the map, up to the closure's own uncertainty), and that closure's part.
 struct RelativeUncertainty {
-  Eigen::Matrix3d motion;
-  Eigen::Matrix3d fixed;
+  Eigen::Matrix3d motion = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d fixed = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d Total() const { return motion + fixed; }
 };
 
@@ -199,7 +270,8 @@ double SquaredMahalanobis(const Eigen::Vector3d& error, const Eigen::Matrix3d& c
 }
 
 // Squared Mahalanobis distance between what two closures say of the motion from a.to to b.to
-// (each places its node in the map) and what the chain says of it.
+// (each places its node in the map) and what the chain says of it; closures to two submaps also
+// carry the uncertainty of the chain between the submaps (first-order, summed).
 double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
                                const std::vector<Pose2>& estimate, const ChainUncertainty& chain,
                                const LoopClosureOptions& options) {
@@ -208,6 +280,9 @@ double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
   };
   const Pose2 implied = (at(a.from) * a.relative).Between(at(b.from) * b.relative);
   Eigen::Matrix3d covariance = chain.Relative(a.to, b.to);
+  if (a.from != b.from) {
+    covariance += chain.Relative(std::min(a.from, b.from), std::max(a.from, b.from));
+  }
   covariance.diagonal() += 2.0 * LoopVariances(options);
   return SquaredMahalanobis(PoseError(implied, at(a.to).Between(at(b.to))), covariance);
 }
@@ -272,8 +347,10 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
   std::vector<Submap> submaps;
   std::uint64_t tick = 0;  // counts submap uses, for the built-submap cache
   int anchor = 0;          // node of the last accepted closure
-  // The last closure the gate held back, added if the next one (soon after) agrees with it.
-  std::optional<PoseGraphEdge> pending;
+  // Closures held back, newest last, each added if a later one found soon after (but not too
+  // soon) agrees with it.
+  std::deque<PoseGraphEdge> pending;
+  std::optional<PoseGraphEdge> last_accepted;
   // The motion edges' variance factor, re-estimated from the closures' innovations.
   std::vector<Innovation> innovations;
   double scale = 1.0;
@@ -308,8 +385,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
 
     if (i % static_cast<std::size_t>(options.search_every_nodes) != 0) continue;
     const auto search_start = std::chrono::steady_clock::now();
-    const MatchPoints points =
-        SelectMatchPoints(*scans[i], options.match_max_range_meters, options.match_beam_step);
+    const MatchPoints points = QueryPoints(scans, estimate, travel, i, options);
     if (static_cast<int>(points.size()) < options.min_points) continue;
     bool searched = false;
     Submap* best_submap = nullptr;
@@ -340,13 +416,20 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     stats.search_seconds += SecondsSince(search_start);
     if (searched) ++stats.searches;
     if (best_submap == nullptr) continue;
-    ++stats.found;
     PoseGraphEdge closure;
     closure.from = best_submap->first;
     closure.to = node;
     closure.relative =
         RefineWithCeres(*best_submap->match_grid, points.points, best.pose, options.refinement)
             .pose;
+    if (options.unknown_is_neutral) {
+      const KnownAgreement agreement =
+          AgreementOnKnownCells(*best_submap, points.points, closure.relative);
+      if (agreement.fraction < options.min_known_fraction || agreement.score < options.min_score) {
+        continue;
+      }
+    }
+    ++stats.found;
     closure.sigmas = Eigen::Vector3d(options.loop_sigma_meters, options.loop_sigma_meters,
                                      options.loop_sigma_radians);
     closure.loop_closure = true;
@@ -359,23 +442,43 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     innovation.motion = best_uncertainty.motion;
     innovation.fixed = best_uncertainty.fixed;
     innovation.fixed.diagonal() += LoopVariances(options);
-    if (options.gate_sigmas > 0.0 &&
-        SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed) > gate) {
+    const bool off_prediction =
+        options.gate_sigmas > 0.0 &&
+        SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed) > gate;
+    // Whether 'other', found shortly before, says the same of the map as this closure.
+    const auto agrees_with = [&](const PoseGraphEdge& other) {
+      return SquaredPairDisagreement(other, closure, estimate, chain, options) <= gate;
+    };
+    while (!pending.empty() && travel[i] - travel[static_cast<std::size_t>(pending.front().to)] >
+                                   options.confirm_within_meters) {
+      pending.pop_front();
+    }
+    if (off_prediction || options.confirm_every_closure) {
       // Off the motion's prediction: a lone aliased match, or drift the motion model does not
-      // cover. Drift makes the next closures agree with this one; aliasing does not.
-      const bool confirmed =
-          pending.has_value() &&
-          travel[i] - travel[static_cast<std::size_t>(pending->to)] <=
-              options.confirm_within_meters &&
-          SquaredPairDisagreement(*pending, closure, estimate, chain, options) <= gate;
-      if (!confirmed) {
-        pending = closure;
+      // cover. Drift makes the next closures agree with this one; aliasing does not. Within the
+      // prediction, a loose motion model (a long loop) can still admit an aliased match down a
+      // corridor; its neighbours then disagree with it by metres. A confirmation must come from
+      // a query at least confirm_min_separation_meters further on: two scans a metre apart see
+      // the same stretch of corridor and slide along it together.
+      // A closure off the prediction must be confirmed against another submap: a corridor's
+      // aliased shift can fit one submap's stretch twice, rarely two submaps' stretches alike.
+      const auto confirming = std::find_if(pending.rbegin(), pending.rend(), [&](const auto& p) {
+        return travel[i] - travel[static_cast<std::size_t>(p.to)] >=
+                   options.confirm_min_separation_meters &&
+               (!off_prediction || p.from != closure.from) && agrees_with(p);
+      });
+      if (confirming != pending.rend()) {
+        --stats.gated;  // the pending closure is added after all
+        edges.push_back(*confirming);
+        pending.clear();
+      } else if (off_prediction || !last_accepted.has_value() ||
+                 travel[i] - travel[static_cast<std::size_t>(last_accepted->to)] >
+                     options.confirm_within_meters ||
+                 !agrees_with(*last_accepted)) {
+        pending.push_back(closure);
         ++stats.gated;
         continue;
       }
-      --stats.gated;  // the pending closure is added after all
-      edges.push_back(*pending);
-      pending.reset();
     }
     edges.push_back(closure);
     const std::size_t closure_index = edges.size() - 1;
@@ -400,7 +503,10 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     }
     edges = std::move(kept);
     stats.rejected += static_cast<int>(gated.rejected.size());
-    if (kept_new) anchor = node;
+    if (kept_new) {
+      anchor = node;
+      last_accepted = closure;
+    }
     // The solution was found without the rejected edges (the last solve), so it stands.
     estimate = gated.solution.poses;
     chain.Reposition(estimate);

@@ -12,6 +12,10 @@ bool MatchGridOptions::Validate(std::string* error) const {
     *error = "sigma_meters must be positive";
     return false;
   }
+  if (!(unknown_value >= 0.0 && unknown_value <= 1.0)) {
+    *error = "unknown_value must be in [0, 1]";
+    return false;
+  }
   return true;
 }
 
@@ -27,11 +31,13 @@ MatchGrid MakeMatchGrid(const MapImage& map, const MatchGridOptions& options) {
   grid.origin = Eigen::Vector2d(map.origin.x(), map.origin.y());
   grid.values.resize(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
   const double factor = -0.5 / (options.sigma_meters * options.sigma_meters);
+  grid.outside = static_cast<float>(options.unknown_value);
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
       const double d = field.DistanceAtCell({x, y});
-      grid.values[static_cast<std::size_t>(y * grid.width + x)] =
-          d >= field.max_distance() ? 0.0f : static_cast<float>(std::exp(factor * d * d));
+      float m = d >= field.max_distance() ? 0.0f : static_cast<float>(std::exp(factor * d * d));
+      if (map.At(x, y) < 0) m = std::max(m, grid.outside);
+      grid.values[static_cast<std::size_t>(y * grid.width + x)] = m;
     }
   }
   return grid;

@@ -17,6 +17,11 @@ namespace semchain::mapping {
 
 struct MatchGridOptions {
   double sigma_meters = 0.05;  // width of the Gaussian around occupied cells
+  // M of cells the map does not know (never observed, or outside it): 0 scores a return
+  // there as a miss, so a search prefers poses that put more of the scan on the known map; a
+  // value u makes such returns count as u, neither evidence for nor against a pose whose known
+  // returns score u. Returns on known free cells stay misses.
+  double unknown_value = 0.0;
 
   bool Validate(std::string* error) const;
 };
@@ -27,10 +32,11 @@ struct MatchGrid {
   double resolution = 0.05;
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // lower-left corner of cell (0, 0)
   std::vector<float> values;                         // row-major, row 0 at y = origin.y
+  float outside = 0.0f;  // M outside the grid (MatchGridOptions::unknown_value)
 
-  // M of a cell; 0 outside the grid (nothing is known to be there).
+  // M of a cell; 'outside' outside the grid (nothing is known to be there).
   float At(int x, int y) const {
-    if (x < 0 || y < 0 || x >= width || y >= height) return 0.0f;
+    if (x < 0 || y < 0 || x >= width || y >= height) return outside;
     return values[static_cast<std::size_t>(y * width + x)];
   }
   // Continuous cell coordinates of 'world' (cell (i, j) spans [i, i+1) × [j, j+1)).

@@ -18,11 +18,12 @@ class PrecomputationGrid {
   // The grid of block width 'width' (a power of two) over 'grid'.
   PrecomputationGrid(const MatchGrid& grid, int width);
 
-  // 255 × max of M over [x, x + w) × [y, y + w); 0 where the block misses the map.
+  // 255 × max of M over [x, x + w) × [y, y + w); the grid's outside value where the block
+  // misses the map.
   int At(int x, int y) const {
     const int px = x + offset_;
     const int py = y + offset_;
-    if (px < 0 || py < 0 || px >= width_ || py >= height_) return 0.0f;
+    if (px < 0 || py < 0 || px >= width_ || py >= height_) return outside_;
     return values_[static_cast<std::size_t>(py * width_ + px)];
   }
 
@@ -30,6 +31,7 @@ class PrecomputationGrid {
   int offset_;  // cell (x, y) is stored at (x + offset_, y + offset_): blocks may start left of 0
   int width_;
   int height_;
+  unsigned char outside_ = 0;
   std::vector<unsigned char> values_;
 };
 

@@ -180,10 +180,16 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                                             "max_angular_window_radians",
                                             "gate_sigmas",
                                             "confirm_within_meters",
+                                            "confirm_every_closure",
+                                            "confirm_min_separation_meters",
                                             "min_score",
                                             "min_points",
                                             "match_max_range_meters",
                                             "match_beam_step",
+                                            "query_travel_meters",
+                                            "unknown_is_neutral",
+                                            "min_known_fraction",
+                                            "query_cell_meters",
                                             "max_residual_sigmas",
                                             "odometry_sigma_meters",
                                             "odometry_sigma_per_meter",
@@ -213,11 +219,20 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "gate_sigmas", &l.gate_sigmas));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "confirm_within_meters", &l.confirm_within_meters));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "confirm_every_closure", &l.confirm_every_closure));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "confirm_min_separation_meters", &l.confirm_min_separation_meters));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_score", &l.min_score));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_points", &l.min_points));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "match_max_range_meters", &l.match_max_range_meters));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &l.match_beam_step));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "query_travel_meters", &l.query_travel_meters));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "query_cell_meters", &l.query_cell_meters));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "unknown_is_neutral", &l.unknown_is_neutral));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_known_fraction", &l.min_known_fraction));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "max_residual_sigmas", &l.max_residual_sigmas));
   SEMCHAIN_RETURN_IF_ERROR(

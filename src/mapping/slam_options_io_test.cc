@@ -43,6 +43,12 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(l.window_sigmas, d.window_sigmas);
   EXPECT_DOUBLE_EQ(l.gate_sigmas, d.gate_sigmas);
   EXPECT_DOUBLE_EQ(l.confirm_within_meters, d.confirm_within_meters);
+  EXPECT_EQ(l.confirm_every_closure, d.confirm_every_closure);
+  EXPECT_DOUBLE_EQ(l.confirm_min_separation_meters, d.confirm_min_separation_meters);
+  EXPECT_EQ(l.unknown_is_neutral, d.unknown_is_neutral);
+  EXPECT_DOUBLE_EQ(l.min_known_fraction, d.min_known_fraction);
+  EXPECT_DOUBLE_EQ(l.query_travel_meters, d.query_travel_meters);
+  EXPECT_DOUBLE_EQ(l.query_cell_meters, d.query_cell_meters);
   EXPECT_DOUBLE_EQ(l.max_linear_window_meters, d.max_linear_window_meters);
   EXPECT_DOUBLE_EQ(l.angular_window_radians, d.angular_window_radians);
   EXPECT_DOUBLE_EQ(l.odometry_sigma_meters, d.odometry_sigma_meters);
@@ -73,6 +79,12 @@ TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
   SlamOptions gmapping;
   ASSERT_TRUE(LoadSlamOptions(kConfigDir / "slam-gmapping.yaml", &gmapping).ok());
   EXPECT_FALSE(gmapping.laser_odometry.enabled);
+  SlamOptions campus;
+  ASSERT_TRUE(LoadSlamOptions(kConfigDir / "slam-campus.yaml", &campus).ok());
+  EXPECT_TRUE(campus.pose_graph);
+  EXPECT_TRUE(campus.loop_closure.unknown_is_neutral);
+  EXPECT_TRUE(campus.loop_closure.confirm_every_closure);
+  EXPECT_DOUBLE_EQ(campus.loop_closure.query_travel_meters, 10.0);
 }
 
 TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
