@@ -112,7 +112,11 @@ struct Submap {
 void Build(Submap* submap, const LoopClosureOptions& options) {
   const MapImage image = GridToMapImage(submap->grid);
   MatchGridOptions search_options = options.match_grid;
-  if (options.unknown_is_neutral) search_options.unknown_value = options.min_score;
+  // Just below min_score in the matcher's byte scale: a pose whose returns all fall on unknown
+  // cells is never a candidate, so branch-and-bound prunes such nodes from the start.
+  if (options.unknown_is_neutral) {
+    search_options.unknown_value = (std::ceil(options.min_score * 255.0) - 1.0) / 255.0;
+  }
   submap->match_grid = std::make_unique<MatchGrid>(MakeMatchGrid(image, search_options));
   submap->matcher = std::make_unique<BranchAndBoundMatcher>(*submap->match_grid, options.matcher);
 }

@@ -68,11 +68,12 @@ struct LoopClosureOptions {
   // A match must score at least this (mean M of its points, 0..1) and have this many points.
   double min_score = 0.65;
   int min_points = 40;
-  // Returns on cells the submap never observed count as min_score in the search (neither for
-  // nor against), and an accepted match needs min_known_fraction of its returns on observed
-  // cells scoring min_score there. Otherwise (false) they count as misses, and the search
-  // prefers any pose that puts more of the query on the submap: entering a corridor's submap
-  // from behind, a shift of metres along it.
+  // Returns on cells the submap never observed count as just under min_score in the search
+  // (neither for nor against, and never enough for a pose with all its returns there), and an
+  // accepted match needs min_known_fraction of its returns on observed cells scoring min_score
+  // there. Otherwise (false) they count as misses, and the search prefers any pose that puts more
+  // of the query on the submap: entering a corridor's submap from behind, a shift of metres along
+  // it.
   bool unknown_is_neutral = false;
   double min_known_fraction = 0.3;
   double match_max_range_meters = 20.0;
