@@ -164,12 +164,13 @@ void Amcl::Resample() {
   std::vector<Particle>& next = next_particles_;
   next.clear();
   next.reserve(static_cast<std::size_t>(options_.max_particles));
+  // A random prefix of a shuffled comb is a draw without replacement from it, so whatever
+  // count KLD stops at keeps the comb's low variance.
+  std::vector<std::size_t> comb;
   if (options_.systematic_resampling) {
-    // A random prefix of a shuffled comb is a draw without replacement from it, so whatever
-    // count KLD stops at keeps the comb's low variance.
-    comb_ = SystematicDraws(sampler, static_cast<std::size_t>(options_.max_particles),
-                            std::min(unit(rng_), std::nextafter(1.0, 0.0)));
-    std::shuffle(comb_.begin(), comb_.end(), rng_);
+    comb = SystematicDraws(sampler, static_cast<std::size_t>(options_.max_particles),
+                           std::min(unit(rng_), std::nextafter(1.0, 0.0)));
+    std::shuffle(comb.begin(), comb.end(), rng_);
   }
   int limit = SampleLimit(0);
   while (static_cast<int>(next.size()) < options_.max_particles) {
@@ -179,7 +180,7 @@ void Amcl::Resample() {
       ++counters_.random_particles;
     } else {
       const std::size_t index = options_.systematic_resampling
-                                    ? comb_[next.size()]
+                                    ? comb[next.size()]
                                     : sampler.IndexOf(unit(rng_) * sampler.total());
       pose = particles_[index].pose;
     }

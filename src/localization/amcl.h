@@ -111,7 +111,6 @@ class Amcl {
   std::vector<Particle> particles_;
   std::vector<Particle> next_particles_;  // resampling's output buffer, kept to reuse
   PoseBins bins_;                         // resampling's KLD bins, kept to reuse
-  std::vector<std::size_t> comb_;         // systematic resampling's draws, shuffled
   std::optional<PosePrior> prior_;
   FailureDetector detector_;
   std::optional<Pose2> last_odometry_;  // at the last filter update; empty after initialisation

@@ -449,12 +449,15 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     const bool off_prediction =
         options.gate_sigmas > 0.0 &&
         SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed) > gate;
-    // Whether 'other', found shortly before, says the same of the map as this closure.
+    // Travel from an earlier closure's node to this one, and whether that closure says the same
+    // of the map as this one.
+    const auto travel_since = [&](const PoseGraphEdge& other) {
+      return travel[i] - travel[static_cast<std::size_t>(other.to)];
+    };
     const auto agrees_with = [&](const PoseGraphEdge& other) {
       return SquaredPairDisagreement(other, closure, estimate, chain, options) <= gate;
     };
-    while (!pending.empty() && travel[i] - travel[static_cast<std::size_t>(pending.front().to)] >
-                                   options.confirm_within_meters) {
+    while (!pending.empty() && travel_since(pending.front()) > options.confirm_within_meters) {
       pending.pop_front();
     }
     if (off_prediction || options.confirm_every_closure) {
@@ -462,13 +465,12 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
       // cover. Drift makes the next closures agree with this one; aliasing does not. Within the
       // prediction, a loose motion model (a long loop) can still admit an aliased match down a
       // corridor; its neighbours then disagree with it by metres. A confirmation must come from
-      // a query at least confirm_min_separation_meters further on: two scans a metre apart see
-      // the same stretch of corridor and slide along it together.
-      // A closure off the prediction must be confirmed against another submap: a corridor's
-      // aliased shift can fit one submap's stretch twice, rarely two submaps' stretches alike.
+      // a query at least confirm_min_separation_meters further on (two scans a metre apart see
+      // the same stretch of corridor and slide along it together) and, for a closure off the
+      // prediction, from another submap (a corridor's aliased shift can fit one submap's
+      // stretch twice, rarely two submaps' stretches alike).
       const auto confirming = std::find_if(pending.rbegin(), pending.rend(), [&](const auto& p) {
-        return travel[i] - travel[static_cast<std::size_t>(p.to)] >=
-                   options.confirm_min_separation_meters &&
+        return travel_since(p) >= options.confirm_min_separation_meters &&
                (!off_prediction || p.from != closure.from) && agrees_with(p);
       });
       if (confirming != pending.rend()) {
@@ -476,8 +478,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
         edges.push_back(*confirming);
         pending.clear();
       } else if (off_prediction || !last_accepted.has_value() ||
-                 travel[i] - travel[static_cast<std::size_t>(last_accepted->to)] >
-                     options.confirm_within_meters ||
+                 travel_since(*last_accepted) > options.confirm_within_meters ||
                  !agrees_with(*last_accepted)) {
         pending.push_back(closure);
         ++stats.gated;
