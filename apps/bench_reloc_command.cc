@@ -94,6 +94,12 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
   command->add_flag("!--no-laser-refine", args->options.prelocalization.laser_refine,
                     "Pre-localization hypotheses from the objects alone, not refined by the laser "
                     "scan");
+  command
+      ->add_option("--pair-distance-slack", args->options.prelocalization.distance_slack,
+                   "Metres an observed pair's distance may miss the mapped one by before the "
+                   "relative tolerance α applies (0: seed 001's α alone)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   command->add_flag("!--no-lock-recheck", args->options.method.recheck_lock,
                     "semantic-scanmatch: do not re-check the lock against later frames' objects");
   AddDetectorOptions(command, &args->detector,

@@ -57,6 +57,10 @@ bool PreLocalizationOptions::Validate(std::string* error) const {
     *error = "distance_tolerance (alpha) must be in (0, 1)";
     return false;
   }
+  if (!(distance_slack >= 0.0)) {
+    *error = "distance_slack must be >= 0";
+    return false;
+  }
   if (!(heading_agreement > 0.0) || !(agreement_radius > 0.0) || max_hypotheses < 1 ||
       !(position_std_base > 0.0) || !(heading_std > 0.0) || clearance < 0.0 ||
       !(centre_std_base > 0.0)) {
@@ -223,14 +227,15 @@ std::vector<int> PreLocalizer::ClassesOf(const std::vector<ObservedObject>& obse
 }
 
 template <typename Visit>
-void PreLocalizer::ForEachPair(int class_a, int class_b, double d, Visit&& visit) const {
+void PreLocalizer::ForEachPair(int class_a, int class_b, double d, double slack,
+                               Visit&& visit) const {
   if (class_a < 0 || class_b < 0) return;
   const bool swapped = class_a > class_b;
   const std::vector<IndexedPair>& list =
       pairs_[static_cast<std::size_t>(std::min(class_a, class_b)) * class_id_.size() +
              static_cast<std::size_t>(std::max(class_a, class_b))];
-  const double low = d / (1.0 + options_.distance_tolerance);
-  const double high = d / (1.0 - options_.distance_tolerance);
+  const double low = std::max(0.0, d - slack) / (1.0 + options_.distance_tolerance);
+  const double high = (d + slack) / (1.0 - options_.distance_tolerance);
   auto first =
       std::upper_bound(list.begin(), list.end(), low,
                        [](double value, const IndexedPair& p) { return value < p.distance; });
@@ -247,12 +252,13 @@ void PreLocalizer::ForEachPair(int class_a, int class_b, double d, Visit&& visit
 
 std::vector<std::tuple<int, int, double>> PreLocalizer::RetrievePairs(const std::string& class_a,
                                                                       const std::string& class_b,
-                                                                      double d) const {
+                                                                      double d,
+                                                                      double slack) const {
   std::vector<std::tuple<int, int, double>> found;
   const auto a = class_id_.find(class_a);
   const auto b = class_id_.find(class_b);
   if (a == class_id_.end() || b == class_id_.end()) return found;
-  ForEachPair(a->second, b->second, d, [&](int oa, int ob, double distance) {
+  ForEachPair(a->second, b->second, d, slack, [&](int oa, int ob, double distance) {
     found.emplace_back(objects_[static_cast<std::size_t>(oa)].id,
                        objects_[static_cast<std::size_t>(ob)].id, distance);
   });
@@ -435,7 +441,7 @@ std::vector<PoseCandidate> PreLocalizer::Localize(
   for (std::size_t i = 0; i < pairing; ++i) {
     for (std::size_t j = i + 1; j < pairing; ++j) {
       const double d = (observed[i].surface - observed[j].surface).norm();
-      ForEachPair(classes[i], classes[j], d, [&](int a, int b, double) {
+      ForEachPair(classes[i], classes[j], d, options_.distance_slack, [&](int a, int b, double) {
         if (!allowed(a) || !allowed(b)) return;
         AddPairHypotheses(observed, static_cast<int>(i), static_cast<int>(j), a, b, &candidates);
       });

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/angles.h"
@@ -87,6 +88,10 @@ TEST(PreLocalizerTest, RetrievalToleranceEdges) {
   EXPECT_TRUE(localizer.RetrievePairs("cabinet", "bucket", 2.21).empty());
   EXPECT_TRUE(localizer.RetrievePairs("cabinet", "bucket", 1.79).empty());
   EXPECT_TRUE(localizer.RetrievePairs("cabinet", "door", 2.0).empty());
+  // A slack first: 2.21 − 0.05 is within α.
+  EXPECT_EQ(localizer.RetrievePairs("cabinet", "bucket", 2.21, 0.05).size(), 1u);
+  EXPECT_EQ(localizer.RetrievePairs("cabinet", "bucket", 1.76, 0.05).size(), 1u);
+  EXPECT_TRUE(localizer.RetrievePairs("cabinet", "bucket", 2.28, 0.05).empty());
   // Either order of the classes gives the pair with the ids in the asked order.
   const auto reversed = localizer.RetrievePairs("bucket", "cabinet", 2.0);
   ASSERT_EQ(reversed.size(), 1u);
@@ -132,6 +137,39 @@ semantic::SemanticMap LookAlikeRooms() {
                  Square(2, "cabinet", 6.0, 5.0, 0.2), Square(3, "bucket", 7.5, 5.0, 0.15),
                  Square(4, "chair", 8.5, 3.5, 0.2)};
   return map;
+}
+
+// lab_loop seed 1 (a development seed), trial 9's first frames: a stool and a cabinet whose
+// centres are 0.38 m apart, their surfaces seen 0.29 m apart — outside α's 15 % of so short a
+// pair — while another stool and cabinet 0.33 m apart fit it; that wrong place was decided alone.
+TEST(PreLocalizerTest, AShortPairSeenCloserThanItsCentresIsFoundWithADistanceSlack) {
+  semantic::SemanticMap map;
+  map.objects = {Square(0, "stool", 3.0, 4.0, 0.15), Square(1, "cabinet", 3.38, 4.0, 0.15),
+                 Square(2, "stool", 7.0, 4.0, 0.15), Square(3, "cabinet", 7.33, 4.0, 0.15)};
+  const Pose2 truth(3.19, 2.5, M_PI / 2);
+  std::vector<ObservedObject> observed = {See(truth, map.objects[0]), See(truth, map.objects[1])};
+  // Range noise of a few centimetres moves the two surface points towards each other.
+  const Eigen::Vector2d between = (observed[1].surface - observed[0].surface).normalized();
+  observed[0].surface += 0.025 * between;
+  observed[1].surface -= 0.025 * between;
+  for (ObservedObject& o : observed) {
+    o.range = o.surface.norm();
+    o.bearing = std::atan2(o.surface.y(), o.surface.x());
+  }
+  const double d = (observed[1].surface - observed[0].surface).norm();
+  ASSERT_LT(d, 0.85 * 0.38);  // α alone rules the right pair out
+  const auto near_truth = [&](const std::vector<PoseCandidate>& candidates) {
+    return std::any_of(candidates.begin(), candidates.end(), [&](const PoseCandidate& c) {
+      return (c.pose.translation() - truth.translation()).norm() < 0.15 &&
+             std::abs(NormalizeAngle(c.pose.theta - truth.theta)) < 0.1;
+    });
+  };
+  const auto without = PreLocalizer(map, FreeRoom(), PreLocalizationOptions()).Localize(observed);
+  ASSERT_FALSE(without.empty());  // the other pair's place
+  EXPECT_FALSE(near_truth(without));
+  PreLocalizationOptions with_slack;
+  with_slack.distance_slack = 0.05;
+  EXPECT_TRUE(near_truth(PreLocalizer(map, FreeRoom(), with_slack).Localize(observed)));
 }
 
 TEST(PreLocalizerTest, LookAlikePlacesGiveRankedHypotheses) {
