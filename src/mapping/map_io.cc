@@ -134,16 +134,15 @@ Status WriteMap(const std::filesystem::path& yaml_path, const MapImage& map) {
   SEMCHAIN_CHECK(map.cells.size() == static_cast<std::size_t>(map.width) * map.height);
   std::filesystem::path image_path = yaml_path;
   image_path.replace_extension(".pgm");
-  GrayImage image{map.width, map.height, {}};
-  image.pixels.resize(map.cells.size());
+  std::vector<std::uint8_t> image(map.cells.size());
   const TrinaryPixels pixels = PixelsFor(map);
   for (int row = 0; row < map.height; ++row) {
     for (int x = 0; x < map.width; ++x) {
-      image.pixels[static_cast<std::size_t>(row * map.width + x)] =
+      image[static_cast<std::size_t>(row * map.width + x)] =
           CellToPixel(map, pixels, map.At(x, map.height - 1 - row));
     }
   }
-  SEMCHAIN_RETURN_IF_ERROR(WritePgm(image_path, image, map.resolution));
+  SEMCHAIN_RETURN_IF_ERROR(WritePgm(image_path, map.width, map.height, image, map.resolution));
   std::ostringstream yaml;
   yaml << "image: " << image_path.filename().string() << "\n"
        << "mode: " << map.mode << "\n"

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "core/atomic_file.h"
+#include "core/check.h"
 
 namespace semchain::mapping {
 namespace {
@@ -132,15 +133,31 @@ Result<GrayImage> ReadGrayImage(const std::filesystem::path& path) {
   return DecodeWithOpenCv(*data, path);
 }
 
-Status WritePgm(const std::filesystem::path& path, const GrayImage& image, double resolution) {
+namespace {
+
+std::string PgmHeader(int width, int height, double resolution) {
   std::ostringstream header;
   header << "P5\n# CREATOR: semchain " << resolution << " m/pix\n"
-         << image.width << " " << image.height << "\n255\n";
-  std::string bytes = header.str();
+         << width << " " << height << "\n255\n";
+  return header.str();
+}
+
+}  // namespace
+
+Status WritePgm(const std::filesystem::path& path, const GrayImage& image, double resolution) {
+  std::string bytes = PgmHeader(image.width, image.height, resolution);
   bytes.reserve(bytes.size() + image.pixels.size());
   for (const double p : image.pixels) {
     bytes.push_back(static_cast<char>(std::clamp<long>(std::lround(p), 0, 255)));
   }
+  return WriteFileAtomically(path, bytes);
+}
+
+Status WritePgm(const std::filesystem::path& path, int width, int height,
+                std::span<const std::uint8_t> pixels, double resolution) {
+  SEMCHAIN_CHECK(pixels.size() == static_cast<std::size_t>(width) * height);
+  std::string bytes = PgmHeader(width, height, resolution);
+  bytes.append(reinterpret_cast<const char*>(pixels.data()), pixels.size());
   return WriteFileAtomically(path, bytes);
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <span>
 #include <vector>
 
 #include "core/status.h"
@@ -27,5 +29,10 @@ Result<GrayImage> ReadGrayImage(const std::filesystem::path& path);
 // Writes a binary PGM atomically ("P5", a comment with the resolution, maxval 255); pixel
 // values are rounded to 0..255.
 Status WritePgm(const std::filesystem::path& path, const GrayImage& image, double resolution);
+
+// The same from 8-bit pixels (row-major from the top row), as the map writer has them: a campus
+// map of 25 million cells takes 25 MB so, 200 MB as a GrayImage's doubles.
+Status WritePgm(const std::filesystem::path& path, int width, int height,
+                std::span<const std::uint8_t> pixels, double resolution);
 
 }  // namespace semchain::mapping
