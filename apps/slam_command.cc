@@ -179,7 +179,7 @@ int RunSlamCommand(const SlamArgs& args) {
     semantic->StartPreparing();
     observe = [&semantic](const mapping::SlamStep& step) { semantic->Observe(step); };
   }
-  const mapping::SlamResult result = mapping::RunSlam(
+  mapping::SlamResult result = mapping::RunSlam(
       *scans, *options, [&bar](std::size_t done) { bar.Update(done); }, observe);
   bar.Finish();
   const double seconds =
@@ -198,6 +198,9 @@ int RunSlamCommand(const SlamArgs& args) {
   // Everything is computed before anything is written; the folder is written atomically.
   std::optional<semantic::LiveSemanticResult> live;
   const mapping::MapImage map = mapping::GridToMapImage(depth ? depth->fused : result.map);
+  // Without depth fusion the grid is not written again; a campus grid takes hundreds of MB,
+  // more than the images the folder is written from.
+  if (!depth) result.map = mapping::OccupancyGrid();
   if (semantic) {
     Result<semantic::LiveSemanticResult> finished = semantic->Finish(result.trajectory, map);
     if (!finished.ok()) return ReportError(finished.status());

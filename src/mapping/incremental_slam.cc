@@ -101,7 +101,16 @@ std::vector<StampedPose> IncrementalSlam::Trajectory() const {
   return CurrentTrajectory(scans_, scans_.size(), slam_);
 }
 
-SlamResult IncrementalSlam::Finish(const std::function<void(std::size_t)>& progress) const {
+SlamResult IncrementalSlam::Finish(const std::function<void(std::size_t)>& progress) const& {
+  return FinalPasses(progress, {});
+}
+
+SlamResult IncrementalSlam::Finish(const std::function<void(std::size_t)>& progress) && {
+  return FinalPasses(progress, [this] { slam_.DropParticles(); });
+}
+
+SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& progress,
+                                        const std::function<void()>& before_final_map) const {
   SEMCHAIN_CHECK(!scans_.empty());
   const auto start = std::chrono::steady_clock::now();
   SlamResult result;
@@ -136,6 +145,9 @@ SlamResult IncrementalSlam::Finish(const std::function<void(std::size_t)>& progr
       result.localized = LocalizeAll(result.map, prepared_, options_, &poses, tick);
     }
   }
+  if (before_final_map) before_final_map();
+  // Released first: once the filter is gone this map is the last holder of its cells.
+  result.map = OccupancyGrid();
   result.map = BuildMap(prepared_, poses, options_.rbpf.grid);
   result.every_scan_seconds = SecondsSince(start);
   for (std::size_t i = 0; i < scans_.size(); ++i) {

@@ -82,6 +82,10 @@ class RbpfSlam {
   const RbpfStatistics& statistics() const { return statistics_; }
   const RbpfOptions& options() const { return options_; }
 
+  // Drops the particles and their maps (a campus map takes hundreds of MB): afterwards only
+  // statistics() and options() may be asked.
+  void DropParticles() { particles_ = {}; }
+
  private:
   void Initialize(const PreparedScan& scan, const Pose2& odometry, int index);
   void Propose(const MatchPoints& points, const MotionStep& step);

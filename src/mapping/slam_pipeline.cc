@@ -1,5 +1,7 @@
 #include "mapping/slam_pipeline.h"
 
+#include <utility>
+
 #include "core/check.h"
 
 namespace semchain::mapping {
@@ -33,7 +35,7 @@ SlamResult RunSlam(const std::vector<StampedScan>& scans, const SlamOptions& opt
     if (observe) observe(step);
     if (progress) progress(i + 1);
   }
-  return slam.Finish(progress);
+  return std::move(slam).Finish(progress);
 }
 
 }  // namespace semchain::mapping
