@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "core/angles.h"
+#include "mapping/incremental_slam.h"
 #include "mapping/laser_odometry.h"
+#include "mapping/map_io.h"
 #include "mapping/resampling.h"
 #include "mapping/slam_pipeline.h"
 #include "mapping/testing/synthetic_world.h"
@@ -114,6 +116,27 @@ TEST(SlamPipelineTest, EveryScanGetsAnAccuratePose) {
     EXPECT_LT(result.processed.size(), run.scans.size());
     EXPECT_GT(result.localized, static_cast<int>(run.scans.size()) - 5);
   }
+}
+
+// Finishing an IncrementalSlam for good drops its particles before the final map is built
+// (memory); what it returns must be what finishing it and keeping it returns.
+TEST(SlamPipelineTest, FinishingForGoodGivesWhatFinishingAndKeepingGives) {
+  const testing::SimulatedRun run = testing::SimulateRoomRun(0.2);
+  SlamOptions options;
+  options.rbpf = SmallFilter(6);
+  IncrementalSlam slam(options);
+  for (const StampedScan& scan : run.scans) slam.AddScan(scan);
+  const SlamResult kept = slam.Finish();
+  ASSERT_FALSE(slam.filter().particles().empty());
+  const SlamResult last = std::move(slam).Finish();
+  EXPECT_TRUE(slam.filter().particles().empty());  // NOLINT(bugprone-use-after-move)
+  ASSERT_EQ(last.trajectory.size(), kept.trajectory.size());
+  for (std::size_t i = 0; i < kept.trajectory.size(); ++i) {
+    EXPECT_EQ(last.trajectory[i].pose.x, kept.trajectory[i].pose.x);
+    EXPECT_EQ(last.trajectory[i].pose.theta, kept.trajectory[i].pose.theta);
+  }
+  EXPECT_EQ(GridToMapImage(last.map).cells, GridToMapImage(kept.map).cells);
+  EXPECT_EQ(last.localized, kept.localized);
 }
 
 // A turn in place of 1.2 rad in 0.1 rad steps among clutter, whose wheel odometry stalls for the
