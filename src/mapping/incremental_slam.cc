@@ -1,6 +1,8 @@
 #include "mapping/incremental_slam.h"
 
 #include <atomic>
+#include <chrono>
+#include <utility>
 
 #include "core/check.h"
 #include "mapping/parallel_for.h"
@@ -110,7 +112,7 @@ SlamResult IncrementalSlam::Finish(const std::function<void(std::size_t)>& progr
 }
 
 SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& progress,
-                                        const std::function<void()>& before_final_map) const {
+                                        const std::function<void()>& release_filter) const {
   SEMCHAIN_CHECK(!scans_.empty());
   const auto start = std::chrono::steady_clock::now();
   SlamResult result;
@@ -119,6 +121,11 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
   result.filter_seconds = filter_seconds_;
   result.statistics = slam_.statistics();
   std::vector<std::pair<int, Pose2>> nodes = BestNodes(slam_.BestParticle(), &result.processed);
+  // The filter's map (a copy shares its cells), unless the pose graph moves the nodes: then the
+  // map of the optimized trajectory is built below. The filter is not needed after this.
+  OccupancyGrid filter_map;
+  if (!options_.pose_graph) filter_map = *slam_.BestParticle().map;
+  if (release_filter) release_filter();
   if (options_.pose_graph) {
     std::vector<const PreparedScan*> node_scans;
     std::vector<Pose2> node_poses;
@@ -131,10 +138,8 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     result.loop_closure = std::move(closed.statistics);
   }
   std::vector<Pose2> poses = InterpolatedPoses(scans_, scans_.size(), nodes);
-  // The filter's map, unless the pose graph moved the nodes: then the map of the optimized
-  // trajectory.
-  result.map = options_.pose_graph ? BuildMap(prepared_, poses, options_.rbpf.grid)
-                                   : *slam_.BestParticle().map;
+  result.map =
+      options_.pose_graph ? BuildMap(prepared_, poses, options_.rbpf.grid) : std::move(filter_map);
   if (options_.every_scan.method == "localize") {
     auto tick = [&](std::size_t) {
       if (progress) progress(scans_.size() + scans_.size());
@@ -145,7 +150,6 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
       result.localized = LocalizeAll(result.map, prepared_, options_, &poses, tick);
     }
   }
-  if (before_final_map) before_final_map();
   // Released first: once the filter is gone this map is the last holder of its cells.
   result.map = OccupancyGrid();
   result.map = BuildMap(prepared_, poses, options_.rbpf.grid);

@@ -65,15 +65,16 @@ class IncrementalSlam {
 
   // The final passes on the scans added (at least one): 'progress' (may be empty) is called
   // with scans done counting on from size(), as RunSlam reports them. On an object about to go
-  // (std::move(slam).Finish()) the particles are dropped before the final map is built, so that
-  // the filter's maps and that map never take memory together; the results are the same.
+  // (std::move(slam).Finish()) the particles are dropped as soon as the best one's trajectory
+  // and map are taken, so that the other particles' maps never share memory with the pose
+  // graph's search or the final map; the results are the same.
   SlamResult Finish(const std::function<void(std::size_t)>& progress = {}) const&;
   SlamResult Finish(const std::function<void(std::size_t)>& progress = {}) &&;
 
  private:
-  // Finish's passes; 'before_final_map' (may be empty) runs when the filter is no longer needed.
+  // Finish's passes; 'release_filter' (may be empty) runs once the filter is no longer needed.
   SlamResult FinalPasses(const std::function<void(std::size_t)>& progress,
-                         const std::function<void()>& before_final_map) const;
+                         const std::function<void()>& release_filter) const;
 
   SlamOptions options_;
   LaserOdometry laser_odometry_;

@@ -122,21 +122,24 @@ TEST(SlamPipelineTest, EveryScanGetsAnAccuratePose) {
 // (memory); what it returns must be what finishing it and keeping it returns.
 TEST(SlamPipelineTest, FinishingForGoodGivesWhatFinishingAndKeepingGives) {
   const testing::SimulatedRun run = testing::SimulateRoomRun(0.2);
-  SlamOptions options;
-  options.rbpf = SmallFilter(6);
-  IncrementalSlam slam(options);
-  for (const StampedScan& scan : run.scans) slam.AddScan(scan);
-  const SlamResult kept = slam.Finish();
-  ASSERT_FALSE(slam.filter().particles().empty());
-  const SlamResult last = std::move(slam).Finish();
-  EXPECT_TRUE(slam.filter().particles().empty());  // NOLINT(bugprone-use-after-move)
-  ASSERT_EQ(last.trajectory.size(), kept.trajectory.size());
-  for (std::size_t i = 0; i < kept.trajectory.size(); ++i) {
-    EXPECT_EQ(last.trajectory[i].pose.x, kept.trajectory[i].pose.x);
-    EXPECT_EQ(last.trajectory[i].pose.theta, kept.trajectory[i].pose.theta);
+  for (const bool pose_graph : {false, true}) {
+    SlamOptions options;
+    options.rbpf = SmallFilter(6);
+    options.pose_graph = pose_graph;
+    IncrementalSlam slam(options);
+    for (const StampedScan& scan : run.scans) slam.AddScan(scan);
+    const SlamResult kept = slam.Finish();
+    ASSERT_FALSE(slam.filter().particles().empty());
+    const SlamResult last = std::move(slam).Finish();
+    EXPECT_TRUE(slam.filter().particles().empty());  // NOLINT(bugprone-use-after-move)
+    ASSERT_EQ(last.trajectory.size(), kept.trajectory.size());
+    for (std::size_t i = 0; i < kept.trajectory.size(); ++i) {
+      EXPECT_EQ(last.trajectory[i].pose.x, kept.trajectory[i].pose.x) << pose_graph;
+      EXPECT_EQ(last.trajectory[i].pose.theta, kept.trajectory[i].pose.theta) << pose_graph;
+    }
+    EXPECT_EQ(GridToMapImage(last.map).cells, GridToMapImage(kept.map).cells) << pose_graph;
+    EXPECT_EQ(last.localized, kept.localized);
   }
-  EXPECT_EQ(GridToMapImage(last.map).cells, GridToMapImage(kept.map).cells);
-  EXPECT_EQ(last.localized, kept.localized);
 }
 
 // A turn in place of 1.2 rad in 0.1 rad steps among clutter, whose wheel odometry stalls for the
