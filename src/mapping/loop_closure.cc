@@ -284,7 +284,7 @@ double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
   };
   const Pose2 implied = (at(a.from) * a.relative).Between(at(b.from) * b.relative);
   Eigen::Matrix3d covariance = chain.Relative(a.to, b.to);
-  if (a.from != b.from) {
+  if (options.corridor_confirmation && a.from != b.from) {
     covariance += chain.Relative(std::min(a.from, b.from), std::max(a.from, b.from));
   }
   covariance.diagonal() += 2.0 * LoopVariances(options);
@@ -466,20 +466,24 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
       // prediction, a loose motion model (a long loop) can still admit an aliased match down a
       // corridor; its neighbours then disagree with it by metres. A confirmation must come from
       // a query at least confirm_min_separation_meters further on (two scans a metre apart see
-      // the same stretch of corridor and slide along it together) and, for a closure off the
-      // prediction, from another submap (a corridor's aliased shift can fit one submap's
-      // stretch twice, rarely two submaps' stretches alike).
-      const auto confirming = std::find_if(pending.rbegin(), pending.rend(), [&](const auto& p) {
+      // the same stretch of corridor and slide along it together) and, with the corridor rules,
+      // for a closure off the prediction from another submap. Without them only the latest
+      // held-back closure may be confirmed.
+      const bool corridor = options.corridor_confirmation;
+      const auto candidates_end =
+          corridor || pending.empty() ? pending.rend() : std::next(pending.rbegin());
+      const auto confirming = std::find_if(pending.rbegin(), candidates_end, [&](const auto& p) {
         return travel_since(p) >= options.confirm_min_separation_meters &&
-               (!off_prediction || p.from != closure.from) && agrees_with(p);
+               (!corridor || !off_prediction || p.from != closure.from) && agrees_with(p);
       });
-      if (confirming != pending.rend()) {
+      if (confirming != candidates_end) {
         --stats.gated;  // the pending closure is added after all
         edges.push_back(*confirming);
         pending.clear();
       } else if (off_prediction || !last_accepted.has_value() ||
                  travel_since(*last_accepted) > options.confirm_within_meters ||
                  !agrees_with(*last_accepted)) {
+        if (!corridor) pending.clear();  // it replaces the earlier one
         pending.push_back(closure);
         ++stats.gated;
         continue;

@@ -181,6 +181,7 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                                             "gate_sigmas",
                                             "confirm_within_meters",
                                             "confirm_every_closure",
+                                            "corridor_confirmation",
                                             "confirm_min_separation_meters",
                                             "min_score",
                                             "min_points",
@@ -221,6 +222,8 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
       yaml::ReadOptional(*node, "confirm_within_meters", &l.confirm_within_meters));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "confirm_every_closure", &l.confirm_every_closure));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "corridor_confirmation", &l.corridor_confirmation));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "confirm_min_separation_meters", &l.confirm_min_separation_meters));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_score", &l.min_score));

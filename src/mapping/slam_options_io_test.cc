@@ -44,6 +44,7 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(l.gate_sigmas, d.gate_sigmas);
   EXPECT_DOUBLE_EQ(l.confirm_within_meters, d.confirm_within_meters);
   EXPECT_EQ(l.confirm_every_closure, d.confirm_every_closure);
+  EXPECT_EQ(l.corridor_confirmation, d.corridor_confirmation);
   EXPECT_DOUBLE_EQ(l.confirm_min_separation_meters, d.confirm_min_separation_meters);
   EXPECT_EQ(l.unknown_is_neutral, d.unknown_is_neutral);
   EXPECT_DOUBLE_EQ(l.min_known_fraction, d.min_known_fraction);
@@ -84,6 +85,7 @@ TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
   EXPECT_TRUE(campus.pose_graph);
   EXPECT_TRUE(campus.loop_closure.unknown_is_neutral);
   EXPECT_TRUE(campus.loop_closure.confirm_every_closure);
+  EXPECT_TRUE(campus.loop_closure.corridor_confirmation);
   EXPECT_DOUBLE_EQ(campus.loop_closure.query_travel_meters, 10.0);
 }
 
