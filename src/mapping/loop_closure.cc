@@ -98,8 +98,17 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 struct Submap {
   int first = 0;
   int last = 0;
+  // While open: the grid scans go into. Once finished it keeps only its frame (an empty grid
+  // with the same origin and resolution, for CellOf): what the searches need of it is kept as
+  // an image at a byte a cell, where the grid takes 16 (a campus run has a hundred submaps).
   OccupancyGrid grid;
   bool finished = false;
+  // Once finished: the grid's image (the match grid is built from it) and, cell by cell over its
+  // extent, whether the grid observed the cell (the image's unknown also covers observed cells
+  // of middling probability); image_min is its first cell in the grid's indices.
+  MapImage image;
+  std::vector<std::uint8_t> observed;
+  Eigen::Vector2i image_min = Eigen::Vector2i::Zero();
   // Once finished: the match grid's centre and the radius of its extent around it (metres)...
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
   double radius = 0.0;
@@ -110,7 +119,7 @@ struct Submap {
 };
 
 void Build(Submap* submap, const LoopClosureOptions& options) {
-  const MapImage image = GridToMapImage(submap->grid);
+  const MapImage& image = submap->image;
   MatchGridOptions search_options = options.match_grid;
   // Just below min_score in the matcher's byte scale: a pose whose returns all fall on unknown
   // cells is never a candidate, so branch-and-bound prunes such nodes from the start.
@@ -121,7 +130,32 @@ void Build(Submap* submap, const LoopClosureOptions& options) {
   submap->matcher = std::make_unique<BranchAndBoundMatcher>(*submap->match_grid, options.matcher);
 }
 
+// Whether the finished submap's grid observed the cell holding 'point' (submap frame).
+bool Observed(const Submap& submap, const Eigen::Vector2d& point) {
+  const Eigen::Vector2i cell = submap.grid.CellOf(point) - submap.image_min;
+  if (cell.x() < 0 || cell.y() < 0 || cell.x() >= submap.image.width ||
+      cell.y() >= submap.image.height) {
+    return false;
+  }
+  return submap.observed[static_cast<std::size_t>(cell.y() * submap.image.width + cell.x())] != 0;
+}
+
 void Finish(Submap* submap, const LoopClosureOptions& options) {
+  const OccupancyGrid& grid = submap->grid;
+  submap->image = GridToMapImage(grid);
+  const Eigen::Vector2d offset =
+      (submap->image.origin.head<2>() - grid.origin()) / grid.resolution();
+  submap->image_min = Eigen::Vector2i(static_cast<int>(std::lround(offset.x())),
+                                      static_cast<int>(std::lround(offset.y())));
+  submap->observed.assign(submap->image.cells.size(), 0);
+  for (int y = 0; y < submap->image.height; ++y) {
+    for (int x = 0; x < submap->image.width; ++x) {
+      const GridCell* cell = grid.Find(submap->image_min + Eigen::Vector2i(x, y));
+      submap->observed[static_cast<std::size_t>(y * submap->image.width + x)] =
+          cell != nullptr && cell->Known() ? 1 : 0;
+    }
+  }
+  submap->grid = OccupancyGrid(grid.options(), grid.origin());
   Build(submap, options);
   submap->finished = true;
   submap->center = submap->match_grid->Center();
@@ -199,8 +233,7 @@ KnownAgreement AgreementOnKnownCells(const Submap& submap,
   double sum = 0.0;
   for (const Eigen::Vector2d& point : points) {
     const Eigen::Vector2d world = transform * point;
-    const GridCell* cell = submap.grid.Find(submap.grid.CellOf(world));
-    if (cell == nullptr || !cell->Known()) continue;
+    if (!Observed(submap, world)) continue;
     ++known;
     const Eigen::Vector2i match_cell = submap.match_grid->CellOf(world);
     sum += submap.match_grid->At(match_cell.x(), match_cell.y());
