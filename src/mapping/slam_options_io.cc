@@ -162,116 +162,53 @@ Status ReadEveryScan(const yaml::Node& root, EveryScanOptions* e) {
 
 // pose_graph: {enabled, submap_travel_meters, ...}: the pose graph behind the filter.
 Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
-  if (!root.Has("pose_graph")) return Status::Ok();
-  const Result<yaml::Node> node = root.Get("pose_graph");
-  if (!node.ok()) return node.status();
-  if (node->IsNull()) return Status::Ok();
-  if (!node->IsMap()) return node->Error("expected a map");
   LoopClosureOptions& l = options->loop_closure;
-  SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys({"enabled",
-                                            "submap_travel_meters",
-                                            "min_loop_travel_meters",
-                                            "search_every_nodes",
-                                            "max_built_submaps",
-                                            "window_sigmas",
-                                            "linear_window_meters",
-                                            "max_linear_window_meters",
-                                            "angular_window_radians",
-                                            "max_angular_window_radians",
-                                            "gate_sigmas",
-                                            "confirm_within_meters",
-                                            "confirm_every_closure",
-                                            "corridor_confirmation",
-                                            "confirm_min_separation_meters",
-                                            "min_score",
-                                            "min_points",
-                                            "match_max_range_meters",
-                                            "match_beam_step",
-                                            "query_travel_meters",
-                                            "unknown_is_neutral",
-                                            "min_known_fraction",
-                                            "query_cell_meters",
-                                            "max_residual_sigmas",
-                                            "odometry_sigma_meters",
-                                            "odometry_sigma_per_meter",
-                                            "odometry_sigma_radians",
-                                            "odometry_sigma_radians_per_radian",
-                                            "loop_sigma_meters",
-                                            "loop_sigma_radians",
-                                            "adapt_motion_noise",
-                                            "min_motion_noise_scale",
-                                            "max_motion_noise_scale"}));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "enabled", &options->pose_graph));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "submap_travel_meters", &l.submap_travel_meters));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "min_loop_travel_meters", &l.min_loop_travel_meters));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "search_every_nodes", &l.search_every_nodes));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "max_built_submaps", &l.max_built_submaps));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "window_sigmas", &l.window_sigmas));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "linear_window_meters", &l.linear_window_meters));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "max_linear_window_meters", &l.max_linear_window_meters));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "angular_window_radians", &l.angular_window_radians));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "max_angular_window_radians", &l.max_angular_window_radians));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "gate_sigmas", &l.gate_sigmas));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "confirm_within_meters", &l.confirm_within_meters));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "confirm_every_closure", &l.confirm_every_closure));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "corridor_confirmation", &l.corridor_confirmation));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "confirm_min_separation_meters", &l.confirm_min_separation_meters));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_score", &l.min_score));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_points", &l.min_points));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "match_max_range_meters", &l.match_max_range_meters));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &l.match_beam_step));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "query_travel_meters", &l.query_travel_meters));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "query_cell_meters", &l.query_cell_meters));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "unknown_is_neutral", &l.unknown_is_neutral));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_known_fraction", &l.min_known_fraction));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "max_residual_sigmas", &l.max_residual_sigmas));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "odometry_sigma_meters", &l.odometry_sigma_meters));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "odometry_sigma_per_meter", &l.odometry_sigma_per_meter));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "odometry_sigma_radians", &l.odometry_sigma_radians));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "odometry_sigma_radians_per_radian",
-                                              &l.odometry_sigma_radians_per_radian));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "loop_sigma_meters", &l.loop_sigma_meters));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "loop_sigma_radians", &l.loop_sigma_radians));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "adapt_motion_noise", &l.adapt_motion_noise));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "min_motion_noise_scale", &l.min_motion_noise_scale));
-  return yaml::ReadOptional(*node, "max_motion_noise_scale", &l.max_motion_noise_scale);
+  return ReadSection(root, "pose_graph",
+                     {{"enabled", &options->pose_graph},
+                      {"submap_travel_meters", &l.submap_travel_meters},
+                      {"min_loop_travel_meters", &l.min_loop_travel_meters},
+                      {"search_every_nodes", &l.search_every_nodes},
+                      {"max_built_submaps", &l.max_built_submaps},
+                      {"window_sigmas", &l.window_sigmas},
+                      {"linear_window_meters", &l.linear_window_meters},
+                      {"max_linear_window_meters", &l.max_linear_window_meters},
+                      {"angular_window_radians", &l.angular_window_radians},
+                      {"max_angular_window_radians", &l.max_angular_window_radians},
+                      {"gate_sigmas", &l.gate_sigmas},
+                      {"confirm_within_meters", &l.confirm_within_meters},
+                      {"confirm_every_closure", &l.confirm_every_closure},
+                      {"corridor_confirmation", &l.corridor_confirmation},
+                      {"confirm_min_separation_meters", &l.confirm_min_separation_meters},
+                      {"min_score", &l.min_score},
+                      {"min_points", &l.min_points},
+                      {"match_max_range_meters", &l.match_max_range_meters},
+                      {"match_beam_step", &l.match_beam_step},
+                      {"query_travel_meters", &l.query_travel_meters},
+                      {"query_cell_meters", &l.query_cell_meters},
+                      {"unknown_is_neutral", &l.unknown_is_neutral},
+                      {"min_known_fraction", &l.min_known_fraction},
+                      {"max_residual_sigmas", &l.max_residual_sigmas},
+                      {"odometry_sigma_meters", &l.odometry_sigma_meters},
+                      {"odometry_sigma_per_meter", &l.odometry_sigma_per_meter},
+                      {"odometry_sigma_radians", &l.odometry_sigma_radians},
+                      {"odometry_sigma_radians_per_radian", &l.odometry_sigma_radians_per_radian},
+                      {"loop_sigma_meters", &l.loop_sigma_meters},
+                      {"loop_sigma_radians", &l.loop_sigma_radians},
+                      {"adapt_motion_noise", &l.adapt_motion_noise},
+                      {"min_motion_noise_scale", &l.min_motion_noise_scale},
+                      {"max_motion_noise_scale", &l.max_motion_noise_scale}});
 }
 
 Status ReadLaserOdometry(const yaml::Node& root, LaserOdometryOptions* l) {
-  if (!root.Has("laser_odometry")) return Status::Ok();
-  const Result<yaml::Node> node = root.Get("laser_odometry");
-  if (!node.ok()) return node.status();
-  if (node->IsNull()) return Status::Ok();
-  if (!node->IsMap()) return node->Error("expected a map");
-  SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys({"enabled", "scans_per_submap", "min_matched_points",
-                                            "match_max_range_meters", "match_beam_step", "matcher",
-                                            "refinement", "prior"}));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "enabled", &l->enabled));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "scans_per_submap", &l->scans_per_submap));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_matched_points", &l->min_matched_points));
-  SEMCHAIN_RETURN_IF_ERROR(
-      yaml::ReadOptional(*node, "match_max_range_meters", &l->match_max_range_meters));
-  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &l->match_beam_step));
-  SEMCHAIN_RETURN_IF_ERROR(ReadSection(*node, "refinement", RefinementFields(&l->refinement)));
-  SEMCHAIN_RETURN_IF_ERROR(ReadSection(*node, "prior", MotionFields(&l->prior)));
-  return ReadSection(*node, "matcher", MatcherFields(&l->matcher));
+  return ReadSection(root, "laser_odometry",
+                     {{"enabled", &l->enabled},
+                      {"scans_per_submap", &l->scans_per_submap},
+                      {"min_matched_points", &l->min_matched_points},
+                      {"match_max_range_meters", &l->match_max_range_meters},
+                      {"match_beam_step", &l->match_beam_step}},
+                     {{"matcher", MatcherFields(&l->matcher)},
+                      {"refinement", RefinementFields(&l->refinement)},
+                      {"prior", MotionFields(&l->prior)}});
 }
 
 }  // namespace
