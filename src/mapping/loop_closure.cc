@@ -88,11 +88,9 @@ bool LoopClosureOptions::Validate(std::string* error) const {
   return optimizer.Validate(error);
 }
 
-namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+// Kept by LoopCloser::State (a member of a class with linkage may not use the anonymous
+// namespace).
+namespace loop_closure_internal {
 
 // A rigid local map in the frame of its first node.
 struct Submap {
@@ -117,6 +115,25 @@ struct Submap {
   std::unique_ptr<BranchAndBoundMatcher> matcher;
   std::uint64_t last_used = 0;  // search counter when it was last needed built
 };
+
+// What an accepted closure said that the graph did not already know: its error against the
+// graph's prediction and the two covariances that error had to be explained by.
+struct Innovation {
+  Eigen::Vector3d error;
+  Eigen::Matrix3d motion;  // the motion edges' part, at their modelled variances
+  Eigen::Matrix3d fixed;   // the closures' part
+};
+
+}  // namespace loop_closure_internal
+
+using loop_closure_internal::Innovation;
+using loop_closure_internal::Submap;
+
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 void Build(Submap* submap, const LoopClosureOptions& options) {
   const MapImage& image = submap->image;
@@ -324,14 +341,6 @@ double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
   return SquaredMahalanobis(PoseError(implied, at(a.to).Between(at(b.to))), covariance);
 }
 
-// What an accepted closure said that the graph did not already know: its error against the
-// graph's prediction and the two covariances that error had to be explained by.
-struct Innovation {
-  Eigen::Vector3d error;
-  Eigen::Matrix3d motion;  // the motion edges' part, at their modelled variances
-  Eigen::Matrix3d fixed;   // the closures' part
-};
-
 // The smallest factor on the motion edges' variances under which every closure's innovation
 // lies within the 99 % region of a 3-dof Gaussian (squared Mahalanobis distance 11.34), within
 // [min_scale, max_scale]: a filter far better than the model (its closures land where it
@@ -368,19 +377,17 @@ std::vector<PoseGraphEdge> ScaledMotion(const std::vector<PoseGraphEdge>& edges,
 
 }  // namespace
 
-LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
-                             const std::vector<Pose2>& poses, const LoopClosureOptions& options,
-                             const std::function<void(std::size_t)>& progress) {
-  std::string error;
-  SEMCHAIN_CHECK(options.Validate(&error));
-  SEMCHAIN_CHECK(scans.size() == poses.size());
-  LoopClosureResult result;
-  LoopClosureStatistics& stats = result.statistics;
-  const std::size_t n = poses.size();
-  stats.nodes = static_cast<int>(n);
-  std::vector<Pose2>& estimate = result.poses;
+struct LoopCloser::State {
+  explicit State(const LoopClosureOptions& o) : options(o) {}
+
+  LoopClosureOptions options;
+  LoopClosureStatistics stats;
+  std::deque<PreparedScan> scan_store;  // the nodes' scans (a deque keeps references stable)
+  std::vector<const PreparedScan*> scans;
+  std::vector<Pose2> poses;     // the filter's, one per node (rebased when the filter follows)
+  std::vector<Pose2> estimate;  // the graph's
   std::vector<PoseGraphEdge> edges;
-  std::vector<double> travel(n, 0.0);
+  std::vector<double> travel;
   std::vector<Submap> submaps;
   std::uint64_t tick = 0;  // counts submap uses, for the built-submap cache
   int anchor = 0;          // node of the last accepted closure
@@ -391,176 +398,222 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
   // The motion edges' variance factor, re-estimated from the closures' innovations.
   std::vector<Innovation> innovations;
   double scale = 1.0;
-  ChainUncertainty chain(n > 0 ? poses[0] : Pose2());
+  std::optional<ChainUncertainty> chain;
 
-  for (std::size_t i = 0; i < n; ++i) {
-    if (progress && i > 0) progress(i);
-    const int node = static_cast<int>(i);
-    if (i == 0) {
-      estimate.push_back(poses[0]);
-    } else {
-      travel[i] = travel[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm();
-      edges.push_back(MotionEdge(node - 1, poses[i - 1], poses[i], options));
-      estimate.push_back(estimate[i - 1] * edges.back().relative);
-      chain.Append(estimate.back(), edges.back().sigmas.x(), edges.back().sigmas.z());
-    }
-    // The submap this node's scan goes into.
-    if (submaps.empty() || travel[i] - travel[static_cast<std::size_t>(submaps.back().first)] >
-                               options.submap_travel_meters) {
-      if (!submaps.empty()) {
-        Finish(&submaps.back(), options);
-        Acquire(&submaps.back(), nullptr, ++tick, &submaps, options);
-      }
-      submaps.emplace_back();
-      submaps.back().first = node;
-      submaps.back().grid = OccupancyGrid(options.submap_grid);
-    }
-    Submap& open = submaps.back();
-    open.last = node;
-    InsertScan(*scans[i], poses[static_cast<std::size_t>(open.first)].Between(poses[i]),
-               &open.grid);
+  bool Add(const PreparedScan& scan, const Pose2& pose);
+};
 
-    if (i % static_cast<std::size_t>(options.search_every_nodes) != 0) continue;
-    const auto search_start = std::chrono::steady_clock::now();
-    const MatchPoints points = QueryPoints(scans, estimate, travel, i, options);
-    if (static_cast<int>(points.size()) < options.min_points) continue;
-    bool searched = false;
-    Submap* best_submap = nullptr;
-    BranchAndBoundResult best;
-    RelativeUncertainty best_uncertainty;
-    for (Submap& submap : submaps) {
-      if (!submap.finished || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
-                                  options.min_loop_travel_meters) {
-        continue;
-      }
-      const RelativeUncertainty uncertainty =
-          UncertaintyToSubmap(chain, submap.first, anchor, node, options);
-      SearchWindow window = WindowFor(uncertainty.Total(), options);
-      window.center = estimate[static_cast<std::size_t>(submap.first)].Between(estimate[i]);
-      const double reach = window.linear_window_meters + submap.radius;
-      if ((window.center.translation() - submap.center).norm() > reach) continue;
-      // The best submap so far stays built: its match grid refines the closure below.
-      Acquire(&submap, best_submap, ++tick, &submaps, options);
-      searched = true;
-      const BranchAndBoundResult match =
-          submap.matcher->Match(points.points, window, std::max(options.min_score, best.score));
-      if (match.found && match.score > best.score) {
-        best = match;
-        best_submap = &submap;
-        best_uncertainty = uncertainty;
-      }
-    }
-    stats.search_seconds += SecondsSince(search_start);
-    if (searched) ++stats.searches;
-    if (best_submap == nullptr) continue;
-    PoseGraphEdge closure;
-    closure.from = best_submap->first;
-    closure.to = node;
-    closure.relative =
-        RefineWithCeres(*best_submap->match_grid, points.points, best.pose, options.refinement)
-            .pose;
-    if (options.unknown_is_neutral) {
-      const KnownAgreement agreement =
-          AgreementOnKnownCells(*best_submap, points.points, closure.relative);
-      if (agreement.fraction < options.min_known_fraction || agreement.score < options.min_score) {
-        continue;
-      }
-    }
-    ++stats.found;
-    closure.sigmas = Eigen::Vector3d(options.loop_sigma_meters, options.loop_sigma_meters,
-                                     options.loop_sigma_radians);
-    closure.loop_closure = true;
-    const double gate = options.gate_sigmas * options.gate_sigmas;
-    // The closure's innovation: where it puts the node against where the graph does, and the
-    // closure's own variances beside those of the path it had to be explained by.
-    Innovation innovation;
-    innovation.error = PoseError(
-        closure.relative, estimate[static_cast<std::size_t>(closure.from)].Between(estimate[i]));
-    innovation.motion = best_uncertainty.motion;
-    innovation.fixed = best_uncertainty.fixed;
-    innovation.fixed.diagonal() += LoopVariances(options);
-    const bool off_prediction =
-        options.gate_sigmas > 0.0 &&
-        SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed) > gate;
-    // Travel from an earlier closure's node to this one, and whether that closure says the same
-    // of the map as this one.
-    const auto travel_since = [&](const PoseGraphEdge& other) {
-      return travel[i] - travel[static_cast<std::size_t>(other.to)];
-    };
-    const auto agrees_with = [&](const PoseGraphEdge& other) {
-      return SquaredPairDisagreement(other, closure, estimate, chain, options) <= gate;
-    };
-    while (!pending.empty() && travel_since(pending.front()) > options.confirm_within_meters) {
-      pending.pop_front();
-    }
-    if (off_prediction || options.confirm_every_closure) {
-      // Off the motion's prediction: a lone aliased match, or drift the motion model does not
-      // cover. Drift makes the next closures agree with this one; aliasing does not. Within the
-      // prediction, a loose motion model (a long loop) can still admit an aliased match down a
-      // corridor; its neighbours then disagree with it by metres. A confirmation must come from
-      // a query at least confirm_min_separation_meters further on (two scans a metre apart see
-      // the same stretch of corridor and slide along it together) and, with the corridor rules,
-      // for a closure off the prediction from another submap. Without them only the latest
-      // held-back closure may be confirmed.
-      const bool corridor = options.corridor_confirmation;
-      const auto candidates_end =
-          corridor || pending.empty() ? pending.rend() : std::next(pending.rbegin());
-      const auto confirming = std::find_if(pending.rbegin(), candidates_end, [&](const auto& p) {
-        return travel_since(p) >= options.confirm_min_separation_meters &&
-               (!corridor || !off_prediction || p.from != closure.from) && agrees_with(p);
-      });
-      if (confirming != candidates_end) {
-        --stats.gated;  // the pending closure is added after all
-        edges.push_back(*confirming);
-        pending.clear();
-      } else if (off_prediction || !last_accepted.has_value() ||
-                 travel_since(*last_accepted) > options.confirm_within_meters ||
-                 !agrees_with(*last_accepted)) {
-        if (!corridor) pending.clear();  // it replaces the earlier one
-        pending.push_back(closure);
-        ++stats.gated;
-        continue;
-      }
-    }
-    edges.push_back(closure);
-    const std::size_t closure_index = edges.size() - 1;
-    if (options.adapt_motion_noise) {
-      innovations.push_back(innovation);
-      scale = MotionNoiseScale(innovations, options.min_motion_noise_scale,
-                               options.max_motion_noise_scale);
-    }
-    const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(
-        estimate, ScaledMotion(edges, scale), options.max_residual_sigmas, options.optimizer);
-    ++stats.optimizations;
-    stats.optimizer_seconds += gated.solution.seconds;
-    bool kept_new = true;
-    std::vector<bool> drop(edges.size(), false);
-    for (const int rejected : gated.rejected) {
-      drop[static_cast<std::size_t>(rejected)] = true;
-      if (static_cast<std::size_t>(rejected) == closure_index) kept_new = false;
-    }
-    std::vector<PoseGraphEdge> kept;
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      if (!drop[e]) kept.push_back(edges[e]);
-    }
-    edges = std::move(kept);
-    stats.rejected += static_cast<int>(gated.rejected.size());
-    if (kept_new) {
-      anchor = node;
-      last_accepted = closure;
-    }
-    // The solution was found without the rejected edges (the last solve), so it stands.
-    estimate = gated.solution.poses;
-    chain.Reposition(estimate);
-  }
-  stats.motion_noise_scale = scale;
-  stats.submaps = static_cast<int>(submaps.size());
-  if (progress) progress(n);
-  for (const PoseGraphEdge& edge : edges) {
-    if (edge.loop_closure) stats.residuals.push_back(WhitenedResidual(edge, estimate).norm());
+LoopCloser::LoopCloser(const LoopClosureOptions& options)
+    : state_(std::make_unique<State>(options)) {
+  std::string error;
+  SEMCHAIN_CHECK(options.Validate(&error));
+}
+
+LoopCloser::~LoopCloser() = default;
+LoopCloser::LoopCloser(LoopCloser&&) noexcept = default;
+LoopCloser& LoopCloser::operator=(LoopCloser&&) noexcept = default;
+
+bool LoopCloser::AddNode(const PreparedScan& scan, const Pose2& filter_pose) {
+  return state_->Add(scan, filter_pose);
+}
+
+const std::vector<Pose2>& LoopCloser::estimate() const { return state_->estimate; }
+
+const std::vector<Pose2>& LoopCloser::filter_poses() const { return state_->poses; }
+
+std::size_t LoopCloser::size() const { return state_->estimate.size(); }
+
+void LoopCloser::Rebase() { state_->poses = state_->estimate; }
+
+LoopClosureStatistics LoopCloser::statistics() const {
+  LoopClosureStatistics stats = state_->stats;
+  stats.nodes = static_cast<int>(state_->estimate.size());
+  stats.motion_noise_scale = state_->scale;
+  stats.submaps = static_cast<int>(state_->submaps.size());
+  for (const PoseGraphEdge& edge : state_->edges) {
+    if (edge.loop_closure)
+      stats.residuals.push_back(WhitenedResidual(edge, state_->estimate).norm());
   }
   stats.accepted = static_cast<int>(stats.residuals.size());
-  return result;
+  return stats;
+}
+
+bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
+  scan_store.push_back(scan);
+  scans.push_back(&scan_store.back());
+  poses.push_back(pose);
+  const std::size_t i = poses.size() - 1;
+  const int node = static_cast<int>(i);
+  if (i == 0) {
+    estimate.push_back(poses[0]);
+    travel.push_back(0.0);
+    chain.emplace(poses[0]);
+  } else {
+    travel.push_back(travel[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm());
+    edges.push_back(MotionEdge(node - 1, poses[i - 1], poses[i], options));
+    estimate.push_back(estimate[i - 1] * edges.back().relative);
+    chain->Append(estimate.back(), edges.back().sigmas.x(), edges.back().sigmas.z());
+  }
+  // The submap this node's scan goes into.
+  if (submaps.empty() || travel[i] - travel[static_cast<std::size_t>(submaps.back().first)] >
+                             options.submap_travel_meters) {
+    if (!submaps.empty()) {
+      Finish(&submaps.back(), options);
+      Acquire(&submaps.back(), nullptr, ++tick, &submaps, options);
+    }
+    submaps.emplace_back();
+    submaps.back().first = node;
+    submaps.back().grid = OccupancyGrid(options.submap_grid);
+  }
+  Submap& open = submaps.back();
+  open.last = node;
+  InsertScan(*scans[i], poses[static_cast<std::size_t>(open.first)].Between(poses[i]), &open.grid);
+
+  if (i % static_cast<std::size_t>(options.search_every_nodes) != 0) return false;
+  const auto search_start = std::chrono::steady_clock::now();
+  const MatchPoints points = QueryPoints(scans, estimate, travel, i, options);
+  if (static_cast<int>(points.size()) < options.min_points) return false;
+  bool searched = false;
+  Submap* best_submap = nullptr;
+  BranchAndBoundResult best;
+  RelativeUncertainty best_uncertainty;
+  for (Submap& submap : submaps) {
+    if (!submap.finished || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
+                                options.min_loop_travel_meters) {
+      continue;
+    }
+    const RelativeUncertainty uncertainty =
+        UncertaintyToSubmap(*chain, submap.first, anchor, node, options);
+    SearchWindow window = WindowFor(uncertainty.Total(), options);
+    window.center = estimate[static_cast<std::size_t>(submap.first)].Between(estimate[i]);
+    const double reach = window.linear_window_meters + submap.radius;
+    if ((window.center.translation() - submap.center).norm() > reach) continue;
+    // The best submap so far stays built: its match grid refines the closure below.
+    Acquire(&submap, best_submap, ++tick, &submaps, options);
+    searched = true;
+    const BranchAndBoundResult match =
+        submap.matcher->Match(points.points, window, std::max(options.min_score, best.score));
+    if (match.found && match.score > best.score) {
+      best = match;
+      best_submap = &submap;
+      best_uncertainty = uncertainty;
+    }
+  }
+  stats.search_seconds += SecondsSince(search_start);
+  if (searched) ++stats.searches;
+  if (best_submap == nullptr) return false;
+  PoseGraphEdge closure;
+  closure.from = best_submap->first;
+  closure.to = node;
+  closure.relative =
+      RefineWithCeres(*best_submap->match_grid, points.points, best.pose, options.refinement).pose;
+  if (options.unknown_is_neutral) {
+    const KnownAgreement agreement =
+        AgreementOnKnownCells(*best_submap, points.points, closure.relative);
+    if (agreement.fraction < options.min_known_fraction || agreement.score < options.min_score) {
+      return false;
+    }
+  }
+  ++stats.found;
+  closure.sigmas = Eigen::Vector3d(options.loop_sigma_meters, options.loop_sigma_meters,
+                                   options.loop_sigma_radians);
+  closure.loop_closure = true;
+  const double gate = options.gate_sigmas * options.gate_sigmas;
+  // The closure's innovation: where it puts the node against where the graph does, and the
+  // closure's own variances beside those of the path it had to be explained by.
+  Innovation innovation;
+  innovation.error = PoseError(
+      closure.relative, estimate[static_cast<std::size_t>(closure.from)].Between(estimate[i]));
+  innovation.motion = best_uncertainty.motion;
+  innovation.fixed = best_uncertainty.fixed;
+  innovation.fixed.diagonal() += LoopVariances(options);
+  const bool off_prediction =
+      options.gate_sigmas > 0.0 &&
+      SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed) > gate;
+  // Travel from an earlier closure's node to this one, and whether that closure says the same
+  // of the map as this one.
+  const auto travel_since = [&](const PoseGraphEdge& other) {
+    return travel[i] - travel[static_cast<std::size_t>(other.to)];
+  };
+  const auto agrees_with = [&](const PoseGraphEdge& other) {
+    return SquaredPairDisagreement(other, closure, estimate, *chain, options) <= gate;
+  };
+  while (!pending.empty() && travel_since(pending.front()) > options.confirm_within_meters) {
+    pending.pop_front();
+  }
+  if (off_prediction || options.confirm_every_closure) {
+    // Off the motion's prediction: a lone aliased match, or drift the motion model does not
+    // cover. Drift makes the next closures agree with this one; aliasing does not. Within the
+    // prediction, a loose motion model (a long loop) can still admit an aliased match down a
+    // corridor; its neighbours then disagree with it by metres. A confirmation must come from
+    // a query at least confirm_min_separation_meters further on (two scans a metre apart see
+    // the same stretch of corridor and slide along it together) and, with the corridor rules,
+    // for a closure off the prediction from another submap. Without them only the latest
+    // held-back closure may be confirmed.
+    const bool corridor = options.corridor_confirmation;
+    const auto candidates_end =
+        corridor || pending.empty() ? pending.rend() : std::next(pending.rbegin());
+    const auto confirming = std::find_if(pending.rbegin(), candidates_end, [&](const auto& p) {
+      return travel_since(p) >= options.confirm_min_separation_meters &&
+             (!corridor || !off_prediction || p.from != closure.from) && agrees_with(p);
+    });
+    if (confirming != candidates_end) {
+      --stats.gated;  // the pending closure is added after all
+      edges.push_back(*confirming);
+      pending.clear();
+    } else if (off_prediction || !last_accepted.has_value() ||
+               travel_since(*last_accepted) > options.confirm_within_meters ||
+               !agrees_with(*last_accepted)) {
+      if (!corridor) pending.clear();  // it replaces the earlier one
+      pending.push_back(closure);
+      ++stats.gated;
+      return false;
+    }
+  }
+  edges.push_back(closure);
+  const std::size_t closure_index = edges.size() - 1;
+  if (options.adapt_motion_noise) {
+    innovations.push_back(innovation);
+    scale = MotionNoiseScale(innovations, options.min_motion_noise_scale,
+                             options.max_motion_noise_scale);
+  }
+  const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(
+      estimate, ScaledMotion(edges, scale), options.max_residual_sigmas, options.optimizer);
+  ++stats.optimizations;
+  stats.optimizer_seconds += gated.solution.seconds;
+  bool kept_new = true;
+  std::vector<bool> drop(edges.size(), false);
+  for (const int rejected : gated.rejected) {
+    drop[static_cast<std::size_t>(rejected)] = true;
+    if (static_cast<std::size_t>(rejected) == closure_index) kept_new = false;
+  }
+  std::vector<PoseGraphEdge> kept;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (!drop[e]) kept.push_back(edges[e]);
+  }
+  edges = std::move(kept);
+  stats.rejected += static_cast<int>(gated.rejected.size());
+  if (kept_new) {
+    anchor = node;
+    last_accepted = closure;
+  }
+  // The solution was found without the rejected edges (the last solve), so it stands.
+  estimate = gated.solution.poses;
+  chain->Reposition(estimate);
+  return true;
+}
+
+LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
+                             const std::vector<Pose2>& poses, const LoopClosureOptions& options,
+                             const std::function<void(std::size_t)>& progress) {
+  SEMCHAIN_CHECK(scans.size() == poses.size());
+  LoopCloser closer(options);
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (progress && i > 0) progress(i);
+    closer.AddNode(*scans[i], poses[i]);
+  }
+  if (progress) progress(poses.size());
+  return {closer.estimate(), closer.statistics()};
 }
 
 }  // namespace semchain::mapping

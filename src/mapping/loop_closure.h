@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -136,6 +137,35 @@ struct LoopClosureStatistics {
 struct LoopClosureResult {
   std::vector<Pose2> poses;  // one per node, optimized
   LoopClosureStatistics statistics;
+};
+
+// The pose graph fed one node at a time, while the filter runs: AddNode takes node i's scan and
+// the filter's pose for it, adds the motion edge from node i − 1 and the scan to the open submap,
+// and every search_every_nodes nodes searches the finished submaps for a loop closure and, when
+// one is added, optimizes. When the filter follows the optimized poses (its particles and map
+// moved onto them), Rebase() makes the estimate the filter's poses from then on, so that the
+// next motion edges are measured in the frame the filter now works in.
+class LoopCloser {
+ public:
+  // 'options' must be valid.
+  explicit LoopCloser(const LoopClosureOptions& options);
+  ~LoopCloser();
+  LoopCloser(LoopCloser&&) noexcept;
+  LoopCloser& operator=(LoopCloser&&) noexcept;
+
+  // Adds the next node (the scan is copied); returns true when the graph was optimized.
+  bool AddNode(const PreparedScan& scan, const Pose2& filter_pose);
+  std::size_t size() const;
+  // The graph's poses, one per node.
+  const std::vector<Pose2>& estimate() const;
+  // The filter's poses, one per node, as given (the estimate's up to the last Rebase).
+  const std::vector<Pose2>& filter_poses() const;
+  void Rebase();
+  LoopClosureStatistics statistics() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
 };
 
 // Runs the pose graph over the nodes in order, as it would run while they arrive: 'scans' and
