@@ -101,6 +101,8 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
                           {"closures_rejected", l.rejected},
                           {"closures_gated", l.gated},
                           {"optimizations", l.optimizations},
+                          {"online", options.loop_closure.online},
+                          {"follows", l.follows},
                           {"motion_noise_scale", l.motion_noise_scale},
                           {"search_seconds", l.search_seconds},
                           {"optimizer_seconds", l.optimizer_seconds},
@@ -227,6 +229,9 @@ int RunSlamCommand(const SlamArgs& args) {
         "{:.1f} s, optimizer {:.2f} s",
         l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.gated, l.search_seconds,
         l.optimizer_seconds);
+    if (options->loop_closure.online) {
+      spdlog::info("slam: pose graph online: the particles followed it {} times", l.follows);
+    }
   }
   return 0;
 }

@@ -120,8 +120,7 @@ void SlamSemantic::Observe(const mapping::SlamStep& step) {
   const double stamp = (*step.scans)[step.scan].scan.timestamp;
   if (!step.processed && live_->next_stamp() > stamp) return;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<StampedPose> trajectory =
-      mapping::CurrentTrajectory(*step.scans, step.scan + 1, *step.slam);
+  const std::vector<StampedPose> trajectory = step.source->Trajectory();
   status_ = live_->Advance(trajectory, step.processed, [&step] {
     return mapping::GridToMapImage(*step.slam->BestParticle().map);
   });

@@ -153,9 +153,9 @@ TEST_F(LiveSemanticTest, OnePassEqualsSlamThenSemantic) {
       mapping::RunSlam(*scans, options, {}, [&](const mapping::SlamStep& step) {
         const double stamp = (*step.scans)[step.scan].scan.timestamp;
         if (!fed.ok() || (!step.processed && live->next_stamp() > stamp)) return;
-        fed = live->Advance(
-            mapping::CurrentTrajectory(*step.scans, step.scan + 1, *step.slam), step.processed,
-            [&step] { return mapping::GridToMapImage(*step.slam->BestParticle().map); });
+        fed = live->Advance(step.source->Trajectory(), step.processed, [&step] {
+          return mapping::GridToMapImage(*step.slam->BestParticle().map);
+        });
       });
   ASSERT_TRUE(fed.ok()) << fed.message();
   const mapping::MapImage map = mapping::GridToMapImage(slam.map);

@@ -1,9 +1,11 @@
 #include "mapping/incremental_slam.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <utility>
 
+#include "core/angles.h"
 #include "core/check.h"
 #include "mapping/parallel_for.h"
 #include "mapping/ray_casting.h"
@@ -65,22 +67,12 @@ int LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans
 
 }  // namespace
 
-std::vector<StampedPose> CurrentTrajectory(const std::vector<StampedScan>& scans, std::size_t count,
-                                           const RbpfSlam& slam) {
-  SEMCHAIN_CHECK(count >= 1 && count <= scans.size());
-  std::vector<int> processed;
-  const std::vector<Pose2> poses =
-      InterpolatedPoses(scans, count, BestNodes(slam.BestParticle(), &processed));
-  std::vector<StampedPose> trajectory;
-  trajectory.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) trajectory.push_back({scans[i].scan.timestamp, poses[i]});
-  return trajectory;
-}
-
 IncrementalSlam::IncrementalSlam(const SlamOptions& options)
     : options_(options),
       laser_odometry_(options.laser_odometry, options.rbpf.grid, options.rbpf.field),
-      slam_(options.rbpf) {}
+      slam_(options.rbpf) {
+  if (options.pose_graph && options.loop_closure.online) loop_closer_.emplace(options.loop_closure);
+}
 
 SlamStep IncrementalSlam::AddScan(const StampedScan& raw) {
   auto start = std::chrono::steady_clock::now();
@@ -95,12 +87,115 @@ SlamStep IncrementalSlam::AddScan(const StampedScan& raw) {
   start = std::chrono::steady_clock::now();
   const std::size_t index = scans_.size() - 1;
   const bool processed = slam_.AddScan(scans_.back(), static_cast<int>(index));
+  if (processed && loop_closer_) {
+    AddPoseGraphNodes(static_cast<std::size_t>(options_.loop_closure.online_lag_nodes));
+    if (pending_follow_) FollowPoseGraph(*pending_follow_);
+    pending_follow_.reset();
+  }
   filter_seconds_ += SecondsSince(start);
-  return {index, processed, &slam_, &scans_};
+  return {index, processed, &slam_, &scans_, this};
+}
+
+void IncrementalSlam::AddPoseGraphNodes(std::size_t lag) const {
+  // The graph takes node m once the filter is 'lag' nodes past it, from the best particle's
+  // lineage then: the particle that is best at a scan is often not the one whose line survives,
+  // and a few nodes of hindsight pick the line that does (on the simulated campus the nodes
+  // of the best particle of the moment gave the graph a chain bent by 2 degrees).
+  const Particle& best = slam_.BestParticle();
+  const auto total = static_cast<std::size_t>(slam_.statistics().processed);
+  if (total <= lag) return;
+  const std::size_t last = total - 1 - lag;
+  const std::size_t fed = loop_closer_->size();
+  if (fed > last) return;
+  const std::size_t oldest = fed == 0 ? 0 : fed - 1;  // the node the first new one moves from
+  std::vector<const TrajectoryNode*> lineage;         // nodes oldest … last, newest first
+  const TrajectoryNode* node = best.trajectory.get();
+  for (std::size_t k = total - 1;; --k) {
+    if (k <= last) lineage.push_back(node);
+    if (k == oldest) break;
+    node = node->parent.get();
+  }
+  std::reverse(lineage.begin(), lineage.end());
+  bool optimized = false;
+  for (std::size_t j = fed == 0 ? 0 : 1; j < lineage.size(); ++j) {
+    const Pose2 pose = fed == 0 && j == 0 ? lineage[j]->pose
+                                          : loop_closer_->filter_poses().back() *
+                                                lineage[j - 1]->pose.Between(lineage[j]->pose);
+    node_scans_.push_back(lineage[j]->scan_index);
+    optimized |=
+        loop_closer_->AddNode(prepared_[static_cast<std::size_t>(lineage[j]->scan_index)], pose);
+  }
+  if (!optimized) return;
+  const std::vector<Pose2>& estimate = loop_closer_->estimate();
+  const std::vector<Pose2>& given = loop_closer_->filter_poses();
+  const LoopClosureOptions& options = options_.loop_closure;
+  for (std::size_t j = 0; j < estimate.size(); ++j) {
+    if ((estimate[j].translation() - given[j].translation()).norm() >
+            options.follow_min_shift_meters ||
+        std::abs(NormalizeAngle(estimate[j].theta - given[j].theta)) >
+            options.follow_min_turn_radians) {
+      pending_follow_ = lineage.back()->pose;
+      return;
+    }
+  }
+}
+
+void IncrementalSlam::FollowPoseGraph(const Pose2& filter_pose) {
+  // The nodes in the graph at their optimized poses; each particle keeps its own newer nodes,
+  // moved by the correction that puts the best particle's line on the graph's newest node.
+  const std::vector<Pose2>& estimate = loop_closer_->estimate();
+  const Pose2 correction = estimate.back() * filter_pose.Inverse();
+  auto map = std::make_shared<OccupancyGrid>(options_.rbpf.grid);
+  std::shared_ptr<const TrajectoryNode> history;
+  for (std::size_t j = 0; j < estimate.size(); ++j) {
+    const int scan = node_scans_[j];
+    InsertScan(prepared_[static_cast<std::size_t>(scan)], estimate[j], map.get());
+    if (j + 1 < estimate.size()) {
+      history = std::make_shared<const TrajectoryNode>(TrajectoryNode{estimate[j], scan, history});
+    }
+  }
+  const auto recent =
+      static_cast<int>(slam_.statistics().processed) - static_cast<int>(estimate.size()) + 1;
+  const TrajectoryNode* node = slam_.BestParticle().trajectory.get();
+  for (int k = 0; k + 1 < recent; ++k, node = node->parent.get()) {
+    InsertScan(prepared_[static_cast<std::size_t>(node->scan_index)], correction * node->pose,
+               map.get());
+  }
+  slam_.Follow(correction, map, history, recent);
+  loop_closer_->Rebase();
+  ++follows_;
+}
+
+std::vector<std::pair<int, Pose2>> IncrementalSlam::Nodes(std::vector<int>* processed) const {
+  std::vector<std::pair<int, Pose2>> nodes = BestNodes(slam_.BestParticle(), processed);
+  if (!loop_closer_ || loop_closer_->size() == 0) return nodes;
+  // The best particle's line, moved node by node by what the graph did to the node it was given
+  // (estimate · given⁻¹), the newer nodes by the newest correction: the graph's loop closures
+  // on the line that the filter's hindsight picked (before the particles last followed the
+  // graph, the line and the graph's input are the same poses).
+  const std::vector<Pose2>& estimate = loop_closer_->estimate();
+  const std::vector<Pose2>& given = loop_closer_->filter_poses();
+  Pose2 correction;
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    if (j < estimate.size()) {
+      SEMCHAIN_CHECK(nodes[j].first == node_scans_[j]);
+      correction = estimate[j] * given[j].Inverse();
+    }
+    nodes[j].second = correction * nodes[j].second;
+  }
+  return nodes;
 }
 
 std::vector<StampedPose> IncrementalSlam::Trajectory() const {
-  return CurrentTrajectory(scans_, scans_.size(), slam_);
+  SEMCHAIN_CHECK(!scans_.empty());
+  std::vector<int> processed;
+  const std::vector<Pose2> poses = InterpolatedPoses(scans_, scans_.size(), Nodes(&processed));
+  std::vector<StampedPose> trajectory;
+  trajectory.reserve(scans_.size());
+  for (std::size_t i = 0; i < scans_.size(); ++i) {
+    trajectory.push_back({scans_[i].scan.timestamp, poses[i]});
+  }
+  return trajectory;
 }
 
 SlamResult IncrementalSlam::Finish(const std::function<void(std::size_t)>& progress) const& {
@@ -120,13 +215,24 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
   result.laser_odometry_seconds = laser_odometry_seconds_;
   result.filter_seconds = filter_seconds_;
   result.statistics = slam_.statistics();
-  std::vector<std::pair<int, Pose2>> nodes = BestNodes(slam_.BestParticle(), &result.processed);
+  if (loop_closer_) {
+    AddPoseGraphNodes(0);  // the last nodes, not yet past the lag
+    pending_follow_.reset();
+    std::vector<int> scans;
+    std::vector<Pose2> line;
+    for (const auto& node : BestNodes(slam_.BestParticle(), &scans)) line.push_back(node.second);
+    loop_closer_->Reoptimize(line);
+  }
+  std::vector<std::pair<int, Pose2>> nodes = Nodes(&result.processed);
   // The filter's map (a copy shares its cells), unless the pose graph moves the nodes: then the
   // map of the optimized trajectory is built below. The filter is not needed after this.
   OccupancyGrid filter_map;
   if (!options_.pose_graph) filter_map = *slam_.BestParticle().map;
   if (release_filter) release_filter();
-  if (options_.pose_graph) {
+  if (loop_closer_) {
+    result.loop_closure = loop_closer_->statistics();
+    result.loop_closure.follows = follows_;
+  } else if (options_.pose_graph) {
     std::vector<const PreparedScan*> node_scans;
     std::vector<Pose2> node_poses;
     for (const auto& [index, pose] : nodes) {

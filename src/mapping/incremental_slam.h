@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "io/trajectory_io.h"
 #include "mapping/laser_odometry.h"
+#include "mapping/loop_closure.h"
 #include "mapping/prepared_scan.h"
 #include "mapping/rbpf_slam.h"
 #include "mapping/slam_options.h"
@@ -17,12 +19,15 @@
 // (a pose for every scan in the final map) as RunSlam does.
 namespace semchain::mapping {
 
+class IncrementalSlam;
+
 // What a caller sees of the filter after each scan, while SLAM runs (live semantic mapping).
 struct SlamStep {
   std::size_t scan = 0;    // index of the scan just added
   bool processed = false;  // the filter updated on it (the best particle may have changed)
   const RbpfSlam* slam = nullptr;
   const std::vector<StampedScan>* scans = nullptr;  // the odometry the filter uses
+  const IncrementalSlam* source = nullptr;          // its Trajectory() is the one so far
 };
 
 struct SlamResult {
@@ -39,12 +44,6 @@ struct SlamResult {
   double every_scan_seconds = 0.0;
 };
 
-// The best particle's trajectory over the first 'count' scans of 'scans' (count ≥ 1): its
-// poses at the scans it processed, odometry re-anchored on them in between (as the final
-// trajectory is made before the every-scan pass).
-std::vector<StampedPose> CurrentTrajectory(const std::vector<StampedScan>& scans, std::size_t count,
-                                           const RbpfSlam& slam);
-
 class IncrementalSlam {
  public:
   // 'options' must be valid (SlamOptions::Validate).
@@ -60,7 +59,8 @@ class IncrementalSlam {
   // The scans with the odometry the filter uses (the laser odometry's when enabled).
   const std::vector<StampedScan>& scans() const { return scans_; }
   const RbpfSlam& filter() const { return slam_; }
-  // The best particle's trajectory so far (one pose per scan; at least one scan added).
+  // The trajectory so far (one pose per scan; at least one scan added): the best particle's,
+  // or with the online pose graph the graph's optimized nodes, odometry in between.
   std::vector<StampedPose> Trajectory() const;
 
   // The final passes on the scans added (at least one): 'progress' (may be empty) is called
@@ -75,12 +75,27 @@ class IncrementalSlam {
   // Finish's passes; 'release_filter' (may be empty) runs once the filter is no longer needed.
   SlamResult FinalPasses(const std::function<void(std::size_t)>& progress,
                          const std::function<void()>& release_filter) const;
+  // The online pose graph: adds the best particle's node for the scan just processed and, when
+  // an optimization moved the nodes far enough, makes the filter follow them.
+  // 'lag': nodes the filter must be past a node before it goes in. Const for Finish(), which
+  // adds the last nodes: the graph is what the filter has seen so far, not the filter's state.
+  void AddPoseGraphNodes(std::size_t lag) const;
+  // 'filter_pose': the best particle's line at the graph's newest node.
+  void FollowPoseGraph(const Pose2& filter_pose);
+  // The processed scans' indices and poses the final trajectory is interpolated between.
+  std::vector<std::pair<int, Pose2>> Nodes(std::vector<int>* processed) const;
 
   SlamOptions options_;
   LaserOdometry laser_odometry_;
   RbpfSlam slam_;
   std::vector<PreparedScan> prepared_;
   std::vector<StampedScan> scans_;
+  // With the online pose graph: the graph and the scan index of each of its nodes.
+  mutable std::optional<LoopCloser> loop_closer_;
+  mutable std::vector<int> node_scans_;
+  // Set when the last optimization moved the nodes enough for the particles to follow.
+  mutable std::optional<Pose2> pending_follow_;
+  int follows_ = 0;
   double laser_odometry_seconds_ = 0.0;
   double filter_seconds_ = 0.0;
 };

@@ -77,6 +77,14 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "query_travel_meters must be >= 0 and query_cell_meters positive";
     return false;
   }
+  if (online_lag_nodes < 0) {
+    *error = "online_lag_nodes must be >= 0";
+    return false;
+  }
+  if (!(follow_min_shift_meters > 0.0) || !(follow_min_turn_radians > 0.0)) {
+    *error = "follow_min_shift_meters and follow_min_turn_radians must be positive";
+    return false;
+  }
   if (!(max_residual_sigmas > 0.0)) {
     *error = "max_residual_sigmas must be positive";
     return false;
@@ -424,6 +432,49 @@ const std::vector<Pose2>& LoopCloser::filter_poses() const { return state_->pose
 std::size_t LoopCloser::size() const { return state_->estimate.size(); }
 
 void LoopCloser::Rebase() { state_->poses = state_->estimate; }
+
+void LoopCloser::Reoptimize(const std::vector<Pose2>& filter_poses) {
+  State& state = *state_;
+  SEMCHAIN_CHECK(filter_poses.size() == state.poses.size());
+  const auto same = [](const Pose2& a, const Pose2& b) {
+    return a.x == b.x && a.y == b.y && a.theta == b.theta;
+  };
+  // The same line again (a second Finish()) changes nothing.
+  if (std::equal(filter_poses.begin(), filter_poses.end(), state.poses.begin(), same)) return;
+  std::vector<Pose2> initial(filter_poses.size());
+  for (std::size_t j = 0; j < filter_poses.size(); ++j) {
+    initial[j] = state.estimate[j] * state.poses[j].Inverse() * filter_poses[j];
+  }
+  bool closures = false;
+  for (PoseGraphEdge& edge : state.edges) {
+    if (edge.loop_closure) {
+      closures = true;
+      continue;
+    }
+    edge = MotionEdge(edge.from, filter_poses[static_cast<std::size_t>(edge.from)],
+                      filter_poses[static_cast<std::size_t>(edge.to)], state.options);
+  }
+  state.poses = filter_poses;
+  if (!closures) {
+    state.estimate = filter_poses;
+    return;
+  }
+  const GatedPoseGraphSolution gated =
+      OptimizeRejectingInconsistent(initial, ScaledMotion(state.edges, state.scale),
+                                    state.options.max_residual_sigmas, state.options.optimizer);
+  ++state.stats.optimizations;
+  state.stats.optimizer_seconds += gated.solution.seconds;
+  std::vector<bool> drop(state.edges.size(), false);
+  for (const int rejected : gated.rejected) drop[static_cast<std::size_t>(rejected)] = true;
+  std::vector<PoseGraphEdge> kept;
+  for (std::size_t e = 0; e < state.edges.size(); ++e) {
+    if (!drop[e]) kept.push_back(state.edges[e]);
+  }
+  state.edges = std::move(kept);
+  state.stats.rejected += static_cast<int>(gated.rejected.size());
+  state.estimate = gated.solution.poses;
+  state.chain->Reposition(state.estimate);
+}
 
 LoopClosureStatistics LoopCloser::statistics() const {
   LoopClosureStatistics stats = state_->stats;

@@ -114,6 +114,20 @@ struct LoopClosureOptions {
   // others and dropped.
   double max_residual_sigmas = 5.0;
   PoseGraphOptions optimizer;
+  // How the graph runs beside the filter (IncrementalSlam). Online: the best particle's pose goes
+  // in as a node at every scan the filter processes, and once an optimization has moved some node
+  // more than follow_min_shift_meters or follow_min_turn_radians from where the filter put it,
+  // the particles follow: their map is rebuilt from the optimized nodes and every particle is
+  // moved by the correction that puts the best one on its optimized node, so that the filter
+  // maps on from the closed loop instead of mapping a corridor twice. Otherwise the graph runs
+  // once over the final best particle's nodes, after the filter.
+  bool online = false;
+  // Online, node m goes in once the filter has processed this many nodes after it, from the
+  // best particle's line then (a short hindsight: the best particle of the moment is often not
+  // the one whose line survives).
+  int online_lag_nodes = 10;
+  double follow_min_shift_meters = 0.1;
+  double follow_min_turn_radians = 0.02;
 
   bool Validate(std::string* error) const;
 };
@@ -127,6 +141,7 @@ struct LoopClosureStatistics {
   int rejected = 0;  // closures dropped as inconsistent with the other closures
   int gated = 0;     // closures not added: inconsistent with the motion since (gate_sigmas)
   int optimizations = 0;
+  int follows = 0;  // online: times the particles and their map moved onto the optimized nodes
   double motion_noise_scale = 1.0;  // the motion edges' variance factor at the end
   double search_seconds = 0.0;
   double optimizer_seconds = 0.0;
@@ -161,6 +176,10 @@ class LoopCloser {
   // The filter's poses, one per node, as given (the estimate's up to the last Rebase).
   const std::vector<Pose2>& filter_poses() const;
   void Rebase();
+  // Replaces the filter's poses by 'filter_poses' (one per node; the line the filter finally
+  // kept, which hindsight makes better than what it gave node by node), re-derives the motion
+  // edges from them and optimizes again with the loop closures found (no new search).
+  void Reoptimize(const std::vector<Pose2>& filter_poses);
   LoopClosureStatistics statistics() const;
 
  private:

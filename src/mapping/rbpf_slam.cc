@@ -96,6 +96,27 @@ bool RbpfSlam::AddScan(const StampedScan& scan, int index) {
   return true;
 }
 
+void RbpfSlam::Follow(const Pose2& correction, const std::shared_ptr<OccupancyGrid>& map,
+                      const std::shared_ptr<const TrajectoryNode>& history, int recent) {
+  SEMCHAIN_CHECK(initialized_ && map != nullptr && recent >= 1);
+  for (Particle& p : particles_) {
+    std::vector<const TrajectoryNode*> newest;  // newest first
+    for (const TrajectoryNode* node = p.trajectory.get(); static_cast<int>(newest.size()) < recent;
+         node = node->parent.get()) {
+      SEMCHAIN_CHECK(node != nullptr);
+      newest.push_back(node);
+    }
+    std::shared_ptr<const TrajectoryNode> moved = history;
+    for (auto node = newest.rbegin(); node != newest.rend(); ++node) {
+      moved = std::make_shared<const TrajectoryNode>(
+          TrajectoryNode{correction * (*node)->pose, (*node)->scan_index, moved});
+    }
+    p.pose = correction * p.pose;
+    p.map = map;
+    p.trajectory = std::move(moved);
+  }
+}
+
 void RbpfSlam::Initialize(const PreparedScan& scan, const Pose2& odometry, int index) {
   // The map frame is the odometry frame at the first scan.
   auto map = std::make_shared<OccupancyGrid>(options_.grid);

@@ -82,6 +82,14 @@ class RbpfSlam {
   const RbpfStatistics& statistics() const { return statistics_; }
   const RbpfOptions& options() const { return options_; }
 
+  // Moves the filter onto a corrected trajectory (the pose graph's, after a loop closure):
+  // every particle's pose and its newest 'recent' trajectory nodes (≥ 1) are premultiplied by
+  // 'correction' (a change of map frame), and every particle takes 'map' and, as its trajectory
+  // before those nodes, 'history' (newest first; may be null). Weights and random streams are
+  // kept.
+  void Follow(const Pose2& correction, const std::shared_ptr<OccupancyGrid>& map,
+              const std::shared_ptr<const TrajectoryNode>& history, int recent);
+
   // Drops the particles and their maps (a campus map takes hundreds of MB): afterwards only
   // statistics() and options() may be asked.
   void DropParticles() { particles_ = {}; }

@@ -122,10 +122,11 @@ TEST(SlamPipelineTest, EveryScanGetsAnAccuratePose) {
 // (memory); what it returns must be what finishing it and keeping it returns.
 TEST(SlamPipelineTest, FinishingForGoodGivesWhatFinishingAndKeepingGives) {
   const testing::SimulatedRun run = testing::SimulateRoomRun(0.2);
-  for (const bool pose_graph : {false, true}) {
+  for (const int pose_graph : {0, 1, 2}) {  // none, after the filter, online
     SlamOptions options;
     options.rbpf = SmallFilter(6);
-    options.pose_graph = pose_graph;
+    options.pose_graph = pose_graph > 0;
+    options.loop_closure.online = pose_graph == 2;
     IncrementalSlam slam(options);
     for (const StampedScan& scan : run.scans) slam.AddScan(scan);
     const SlamResult kept = slam.Finish();
@@ -139,6 +140,40 @@ TEST(SlamPipelineTest, FinishingForGoodGivesWhatFinishingAndKeepingGives) {
     }
     EXPECT_EQ(GridToMapImage(last.map).cells, GridToMapImage(kept.map).cells) << pose_graph;
     EXPECT_EQ(last.localized, kept.localized);
+  }
+}
+
+// Following the pose graph moves every particle, its newest nodes and nothing else by the
+// correction, and gives all of them the graph's map and history.
+TEST(RbpfSlamTest, FollowingMovesEveryParticleByTheCorrection) {
+  const testing::SimulatedRun run = testing::SimulateRoomRun(0.2);
+  RbpfSlam slam(SmallFilter(6));
+  for (std::size_t i = 0; i < 80; ++i) slam.AddScan(run.scans[i], static_cast<int>(i));
+  const std::vector<Particle> before = slam.particles();
+  const Pose2 correction(0.4, -0.3, 0.05);
+  auto map = std::make_shared<OccupancyGrid>(OccupancyGridOptions{});
+  auto history = std::make_shared<const TrajectoryNode>(TrajectoryNode{Pose2(1, 2, 3), 7, nullptr});
+  slam.Follow(correction, map, history, 2);
+  ASSERT_EQ(slam.particles().size(), before.size());
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    const Particle& p = slam.particles()[k];
+    const Pose2 expected = correction * before[k].pose;
+    EXPECT_DOUBLE_EQ(p.pose.x, expected.x);
+    EXPECT_DOUBLE_EQ(p.pose.y, expected.y);
+    EXPECT_DOUBLE_EQ(p.pose.theta, expected.theta);
+    EXPECT_EQ(p.map, map);
+    EXPECT_EQ(p.log_weight, before[k].log_weight);
+    const TrajectoryNode* newest = p.trajectory.get();
+    const TrajectoryNode* old_newest = before[k].trajectory.get();
+    for (int n = 0; n < 2; ++n) {
+      const Pose2 moved = correction * old_newest->pose;
+      EXPECT_DOUBLE_EQ(newest->pose.x, moved.x);
+      EXPECT_DOUBLE_EQ(newest->pose.theta, moved.theta);
+      EXPECT_EQ(newest->scan_index, old_newest->scan_index);
+      newest = newest->parent.get();
+      old_newest = old_newest->parent.get();
+    }
+    EXPECT_EQ(newest, history.get());
   }
 }
 

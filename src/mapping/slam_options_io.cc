@@ -196,7 +196,11 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                       {"loop_sigma_radians", &l.loop_sigma_radians},
                       {"adapt_motion_noise", &l.adapt_motion_noise},
                       {"min_motion_noise_scale", &l.min_motion_noise_scale},
-                      {"max_motion_noise_scale", &l.max_motion_noise_scale}});
+                      {"max_motion_noise_scale", &l.max_motion_noise_scale},
+                      {"online", &l.online},
+                      {"online_lag_nodes", &l.online_lag_nodes},
+                      {"follow_min_shift_meters", &l.follow_min_shift_meters},
+                      {"follow_min_turn_radians", &l.follow_min_turn_radians}});
 }
 
 Status ReadLaserOdometry(const yaml::Node& root, LaserOdometryOptions* l) {
