@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <future>
 #include <utility>
 
 #include "core/angles.h"
@@ -88,25 +89,25 @@ SlamStep IncrementalSlam::AddScan(const StampedScan& raw) {
   const std::size_t index = scans_.size() - 1;
   const bool processed = slam_.AddScan(scans_.back(), static_cast<int>(index));
   if (processed && loop_closer_) {
-    AddPoseGraphNodes(static_cast<std::size_t>(options_.loop_closure.online_lag_nodes));
-    if (pending_follow_) FollowPoseGraph(*pending_follow_);
-    pending_follow_.reset();
+    StepGraph(static_cast<std::size_t>(options_.loop_closure.online_lag_nodes),
+              options_.loop_closure.background);
   }
   filter_seconds_ += SecondsSince(start);
   return {index, processed, &slam_, &scans_, this};
 }
 
-void IncrementalSlam::AddPoseGraphNodes(std::size_t lag) const {
+std::vector<IncrementalSlam::GraphInput> IncrementalSlam::NewGraphNodes(std::size_t lag) const {
   // The graph takes node m once the filter is 'lag' nodes past it, from the best particle's
   // lineage then: the particle that is best at a scan is often not the one whose line survives,
   // and a few nodes of hindsight pick the line that does (on the simulated campus the nodes
   // of the best particle of the moment gave the graph a chain bent by 2 degrees).
+  std::vector<GraphInput> inputs;
   const Particle& best = slam_.BestParticle();
   const auto total = static_cast<std::size_t>(slam_.statistics().processed);
-  if (total <= lag) return;
+  if (total <= lag) return inputs;
   const std::size_t last = total - 1 - lag;
   const std::size_t fed = loop_closer_->size();
-  if (fed > last) return;
+  if (fed > last) return inputs;
   const std::size_t oldest = fed == 0 ? 0 : fed - 1;  // the node the first new one moves from
   std::vector<const TrajectoryNode*> lineage;         // nodes oldest … last, newest first
   const TrajectoryNode* node = best.trajectory.get();
@@ -116,35 +117,76 @@ void IncrementalSlam::AddPoseGraphNodes(std::size_t lag) const {
     node = node->parent.get();
   }
   std::reverse(lineage.begin(), lineage.end());
-  bool optimized = false;
   for (std::size_t j = fed == 0 ? 0 : 1; j < lineage.size(); ++j) {
-    const Pose2 pose = fed == 0 && j == 0 ? lineage[j]->pose
-                                          : loop_closer_->filter_poses().back() *
-                                                lineage[j - 1]->pose.Between(lineage[j]->pose);
-    node_scans_.push_back(lineage[j]->scan_index);
-    optimized |=
-        loop_closer_->AddNode(prepared_[static_cast<std::size_t>(lineage[j]->scan_index)], pose);
+    GraphInput input;
+    input.scan_index = lineage[j]->scan_index;
+    input.scan = prepared_[static_cast<std::size_t>(input.scan_index)];
+    input.first = fed == 0 && j == 0;
+    input.pose = input.first ? lineage[j]->pose : lineage[j - 1]->pose.Between(lineage[j]->pose);
+    inputs.push_back(std::move(input));
   }
-  if (!optimized) return;
-  const std::vector<Pose2>& estimate = loop_closer_->estimate();
-  const std::vector<Pose2>& given = loop_closer_->filter_poses();
-  const LoopClosureOptions& options = options_.loop_closure;
+  return inputs;
+}
+
+bool IncrementalSlam::FeedGraph(const std::vector<GraphInput>& inputs, LoopCloser* closer,
+                                const LoopClosureOptions& options) {
+  bool optimized = false;
+  for (const GraphInput& input : inputs) {
+    const Pose2 pose = input.first ? input.pose : closer->filter_poses().back() * input.pose;
+    optimized |= closer->AddNode(input.scan, pose);
+  }
+  if (!optimized) return false;
+  const std::vector<Pose2>& estimate = closer->estimate();
+  const std::vector<Pose2>& given = closer->filter_poses();
   for (std::size_t j = 0; j < estimate.size(); ++j) {
     if ((estimate[j].translation() - given[j].translation()).norm() >
             options.follow_min_shift_meters ||
         std::abs(NormalizeAngle(estimate[j].theta - given[j].theta)) >
             options.follow_min_turn_radians) {
-      pending_follow_ = lineage.back()->pose;
-      return;
+      return true;
     }
   }
+  return false;
 }
 
-void IncrementalSlam::FollowPoseGraph(const Pose2& filter_pose) {
+void IncrementalSlam::WaitForGraph() const {
+  if (!graph_job_.valid()) return;
+  follow_pending_ = graph_job_.get() || follow_pending_;
+}
+
+void IncrementalSlam::StepGraph(std::size_t lag, bool background) {
+  WaitForGraph();
+  if (follow_pending_) FollowPoseGraph();
+  follow_pending_ = false;
+  std::vector<GraphInput> inputs = NewGraphNodes(lag);
+  if (inputs.empty()) return;
+  for (const GraphInput& input : inputs) node_scans_.push_back(input.scan_index);
+  LoopCloser* closer = &*loop_closer_;
+  const LoopClosureOptions* options = &options_.loop_closure;
+  if (!background) {
+    follow_pending_ = FeedGraph(inputs, closer, *options);
+    if (follow_pending_) FollowPoseGraph();
+    follow_pending_ = false;
+    return;
+  }
+  // The graph works on these nodes while the filter takes the next scans; the next processed
+  // scan waits for it (so the results do not depend on how fast either side is) and the
+  // particles follow then.
+  graph_job_ = std::async(std::launch::async, [inputs = std::move(inputs), closer, options] {
+    return FeedGraph(inputs, closer, *options);
+  });
+}
+
+void IncrementalSlam::FollowPoseGraph() {
   // The nodes in the graph at their optimized poses; each particle keeps its own newer nodes,
   // moved by the correction that puts the best particle's line on the graph's newest node.
   const std::vector<Pose2>& estimate = loop_closer_->estimate();
-  const Pose2 correction = estimate.back() * filter_pose.Inverse();
+  const auto recent =
+      static_cast<int>(slam_.statistics().processed) - static_cast<int>(estimate.size()) + 1;
+  const TrajectoryNode* newest_in_graph = slam_.BestParticle().trajectory.get();
+  for (int k = 0; k + 1 < recent; ++k) newest_in_graph = newest_in_graph->parent.get();
+  SEMCHAIN_CHECK(newest_in_graph->scan_index == node_scans_.back());
+  const Pose2 correction = estimate.back() * newest_in_graph->pose.Inverse();
   auto map = std::make_shared<OccupancyGrid>(options_.rbpf.grid);
   std::shared_ptr<const TrajectoryNode> history;
   for (std::size_t j = 0; j < estimate.size(); ++j) {
@@ -154,8 +196,6 @@ void IncrementalSlam::FollowPoseGraph(const Pose2& filter_pose) {
       history = std::make_shared<const TrajectoryNode>(TrajectoryNode{estimate[j], scan, history});
     }
   }
-  const auto recent =
-      static_cast<int>(slam_.statistics().processed) - static_cast<int>(estimate.size()) + 1;
   const TrajectoryNode* node = slam_.BestParticle().trajectory.get();
   for (int k = 0; k + 1 < recent; ++k, node = node->parent.get()) {
     InsertScan(prepared_[static_cast<std::size_t>(node->scan_index)], correction * node->pose,
@@ -188,6 +228,7 @@ std::vector<std::pair<int, Pose2>> IncrementalSlam::Nodes(std::vector<int>* proc
 
 std::vector<StampedPose> IncrementalSlam::Trajectory() const {
   SEMCHAIN_CHECK(!scans_.empty());
+  WaitForGraph();
   std::vector<int> processed;
   const std::vector<Pose2> poses = InterpolatedPoses(scans_, scans_.size(), Nodes(&processed));
   std::vector<StampedPose> trajectory;
@@ -216,8 +257,12 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
   result.filter_seconds = filter_seconds_;
   result.statistics = slam_.statistics();
   if (loop_closer_) {
-    AddPoseGraphNodes(0);  // the last nodes, not yet past the lag
-    pending_follow_.reset();
+    // The last nodes, not yet past the lag (the particles no longer follow).
+    WaitForGraph();
+    follow_pending_ = false;
+    const std::vector<GraphInput> inputs = NewGraphNodes(0);
+    for (const GraphInput& input : inputs) node_scans_.push_back(input.scan_index);
+    FeedGraph(inputs, &*loop_closer_, options_.loop_closure);
     std::vector<int> scans;
     std::vector<Pose2> line;
     for (const auto& node : BestNodes(slam_.BestParticle(), &scans)) line.push_back(node.second);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstddef>
 #include <functional>
+#include <future>
 #include <optional>
 #include <vector>
 
@@ -75,13 +76,27 @@ class IncrementalSlam {
   // Finish's passes; 'release_filter' (may be empty) runs once the filter is no longer needed.
   SlamResult FinalPasses(const std::function<void(std::size_t)>& progress,
                          const std::function<void()>& release_filter) const;
-  // The online pose graph: adds the best particle's node for the scan just processed and, when
-  // an optimization moved the nodes far enough, makes the filter follow them.
-  // 'lag': nodes the filter must be past a node before it goes in. Const for Finish(), which
-  // adds the last nodes: the graph is what the filter has seen so far, not the filter's state.
-  void AddPoseGraphNodes(std::size_t lag) const;
-  // 'filter_pose': the best particle's line at the graph's newest node.
-  void FollowPoseGraph(const Pose2& filter_pose);
+  // The online pose graph. A node for it: the scan, and the best particle's motion to it from
+  // the previous node (or its pose, for the first node).
+  struct GraphInput {
+    int scan_index = 0;
+    PreparedScan scan;
+    Pose2 pose;
+    bool first = false;
+  };
+  // The nodes the graph may take now: those the filter is 'lag' nodes past, not yet in it.
+  std::vector<GraphInput> NewGraphNodes(std::size_t lag) const;
+  // Adds them to 'closer'; true when an optimization moved some node far enough from the
+  // filter's line for the particles to follow (runs on the graph's thread in the background).
+  static bool FeedGraph(const std::vector<GraphInput>& inputs, LoopCloser* closer,
+                        const LoopClosureOptions& options);
+  // At a processed scan: waits for the graph's last work, makes the particles follow it if it
+  // asked for that, and hands the graph its new nodes (in the background, or here).
+  void StepGraph(std::size_t lag, bool background);
+  // Waits for the graph's work in flight and keeps whether the particles should follow (they do
+  // at the next processed scan, whoever waited). Const: Trajectory() and Finish() wait too.
+  void WaitForGraph() const;
+  void FollowPoseGraph();
   // The processed scans' indices and poses the final trajectory is interpolated between.
   std::vector<std::pair<int, Pose2>> Nodes(std::vector<int>* processed) const;
 
@@ -93,8 +108,8 @@ class IncrementalSlam {
   // With the online pose graph: the graph and the scan index of each of its nodes.
   mutable std::optional<LoopCloser> loop_closer_;
   mutable std::vector<int> node_scans_;
-  // Set when the last optimization moved the nodes enough for the particles to follow.
-  mutable std::optional<Pose2> pending_follow_;
+  mutable std::future<bool> graph_job_;  // the graph's work in flight (background)
+  mutable bool follow_pending_ = false;
   int follows_ = 0;
   double laser_odometry_seconds_ = 0.0;
   double filter_seconds_ = 0.0;

@@ -199,6 +199,7 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                       {"max_motion_noise_scale", &l.max_motion_noise_scale},
                       {"online", &l.online},
                       {"online_lag_nodes", &l.online_lag_nodes},
+                      {"background", &l.background},
                       {"follow_min_shift_meters", &l.follow_min_shift_meters},
                       {"follow_min_turn_radians", &l.follow_min_turn_radians}});
 }

@@ -69,6 +69,7 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(l.max_residual_sigmas, d.max_residual_sigmas);
   EXPECT_EQ(l.online, d.online);
   EXPECT_EQ(l.online_lag_nodes, d.online_lag_nodes);
+  EXPECT_EQ(l.background, d.background);
   EXPECT_DOUBLE_EQ(l.follow_min_shift_meters, d.follow_min_shift_meters);
   EXPECT_DOUBLE_EQ(l.follow_min_turn_radians, d.follow_min_turn_radians);
 }
