@@ -92,6 +92,8 @@ TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
   EXPECT_TRUE(campus.loop_closure.confirm_every_closure);
   EXPECT_TRUE(campus.loop_closure.corridor_confirmation);
   EXPECT_DOUBLE_EQ(campus.loop_closure.query_travel_meters, 10.0);
+  EXPECT_DOUBLE_EQ(campus.rbpf.motion.translation_per_meter, 0.02);
+  EXPECT_DOUBLE_EQ(campus.rbpf.motion.translation_per_radian, 0.02);
 }
 
 TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
