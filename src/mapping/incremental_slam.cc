@@ -154,19 +154,27 @@ void IncrementalSlam::WaitForGraph() const {
   follow_pending_ = graph_job_.get() || follow_pending_;
 }
 
-void IncrementalSlam::StepGraph(std::size_t lag, bool background) {
-  WaitForGraph();
+std::vector<IncrementalSlam::GraphInput> IncrementalSlam::TakeGraphNodes(std::size_t lag) const {
+  std::vector<GraphInput> inputs = NewGraphNodes(lag);
+  for (const GraphInput& input : inputs) node_scans_.push_back(input.scan_index);
+  return inputs;
+}
+
+void IncrementalSlam::FollowIfPending() {
   if (follow_pending_) FollowPoseGraph();
   follow_pending_ = false;
-  std::vector<GraphInput> inputs = NewGraphNodes(lag);
+}
+
+void IncrementalSlam::StepGraph(std::size_t lag, bool background) {
+  WaitForGraph();
+  FollowIfPending();
+  std::vector<GraphInput> inputs = TakeGraphNodes(lag);
   if (inputs.empty()) return;
-  for (const GraphInput& input : inputs) node_scans_.push_back(input.scan_index);
   LoopCloser* closer = &*loop_closer_;
   const LoopClosureOptions* options = &options_.loop_closure;
   if (!background) {
     follow_pending_ = FeedGraph(inputs, closer, *options);
-    if (follow_pending_) FollowPoseGraph();
-    follow_pending_ = false;
+    FollowIfPending();
     return;
   }
   // The graph works on these nodes while the filter takes the next scans; the next processed
@@ -183,8 +191,12 @@ void IncrementalSlam::FollowPoseGraph() {
   const std::vector<Pose2>& estimate = loop_closer_->estimate();
   const auto recent =
       static_cast<int>(slam_.statistics().processed) - static_cast<int>(estimate.size()) + 1;
+  std::vector<const TrajectoryNode*> newer;  // the best particle's nodes after the graph's
   const TrajectoryNode* newest_in_graph = slam_.BestParticle().trajectory.get();
-  for (int k = 0; k + 1 < recent; ++k) newest_in_graph = newest_in_graph->parent.get();
+  for (int k = 0; k + 1 < recent; ++k) {
+    newer.push_back(newest_in_graph);
+    newest_in_graph = newest_in_graph->parent.get();
+  }
   SEMCHAIN_CHECK(newest_in_graph->scan_index == node_scans_.back());
   const Pose2 correction = estimate.back() * newest_in_graph->pose.Inverse();
   auto map = std::make_shared<OccupancyGrid>(options_.rbpf.grid);
@@ -196,8 +208,7 @@ void IncrementalSlam::FollowPoseGraph() {
       history = std::make_shared<const TrajectoryNode>(TrajectoryNode{estimate[j], scan, history});
     }
   }
-  const TrajectoryNode* node = slam_.BestParticle().trajectory.get();
-  for (int k = 0; k + 1 < recent; ++k, node = node->parent.get()) {
+  for (const TrajectoryNode* node : newer) {
     InsertScan(prepared_[static_cast<std::size_t>(node->scan_index)], correction * node->pose,
                map.get());
   }
@@ -260,9 +271,7 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     // The last nodes, not yet past the lag (the particles no longer follow).
     WaitForGraph();
     follow_pending_ = false;
-    const std::vector<GraphInput> inputs = NewGraphNodes(0);
-    for (const GraphInput& input : inputs) node_scans_.push_back(input.scan_index);
-    FeedGraph(inputs, &*loop_closer_, options_.loop_closure);
+    FeedGraph(TakeGraphNodes(0), &*loop_closer_, options_.loop_closure);
     std::vector<int> scans;
     std::vector<Pose2> line;
     for (const auto& node : BestNodes(slam_.BestParticle(), &scans)) line.push_back(node.second);

@@ -86,6 +86,8 @@ class IncrementalSlam {
   };
   // The nodes the graph may take now: those the filter is 'lag' nodes past, not yet in it.
   std::vector<GraphInput> NewGraphNodes(std::size_t lag) const;
+  // NewGraphNodes, their scan indices recorded as the graph's next nodes.
+  std::vector<GraphInput> TakeGraphNodes(std::size_t lag) const;
   // Adds them to 'closer'; true when an optimization moved some node far enough from the
   // filter's line for the particles to follow (runs on the graph's thread in the background).
   static bool FeedGraph(const std::vector<GraphInput>& inputs, LoopCloser* closer,
@@ -97,6 +99,7 @@ class IncrementalSlam {
   // at the next processed scan, whoever waited). Const: Trajectory() and Finish() wait too.
   void WaitForGraph() const;
   void FollowPoseGraph();
+  void FollowIfPending();  // FollowPoseGraph when the graph asked for it
   // The processed scans' indices and poses the final trajectory is interpolated between.
   std::vector<std::pair<int, Pose2>> Nodes(std::vector<int>* processed) const;
 

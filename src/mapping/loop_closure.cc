@@ -215,11 +215,11 @@ void Acquire(Submap* wanted, const Submap* keep, std::uint64_t tick, std::vector
 // one per query_cell_meters cell. Down a corridor one scan sees few of the features that tell
 // places apart (a 180° laser mostly sees the walls beside it); a short stretch of the local map
 // sees each several times.
-MatchPoints QueryPoints(const std::vector<const PreparedScan*>& scans,
-                        const std::vector<Pose2>& estimate, const std::vector<double>& travel,
-                        std::size_t i, const LoopClosureOptions& options) {
+MatchPoints QueryPoints(const std::vector<PreparedScan>& scans, const std::vector<Pose2>& estimate,
+                        const std::vector<double>& travel, std::size_t i,
+                        const LoopClosureOptions& options) {
   MatchPoints own =
-      SelectMatchPoints(*scans[i], options.match_max_range_meters, options.match_beam_step);
+      SelectMatchPoints(scans[i], options.match_max_range_meters, options.match_beam_step);
   if (options.query_travel_meters <= 0.0) return own;
   MatchPoints query;
   std::unordered_set<std::int64_t> cells;
@@ -233,7 +233,7 @@ MatchPoints QueryPoints(const std::vector<const PreparedScan*>& scans,
   for (std::size_t j = i; j-- > 0 && travel[i] - travel[j] <= options.query_travel_meters;) {
     const Eigen::Isometry2d to_node = estimate[i].Between(estimate[j]).ToIsometry();
     for (const Eigen::Vector2d& point :
-         SelectMatchPoints(*scans[j], options.match_max_range_meters, options.match_beam_step)
+         SelectMatchPoints(scans[j], options.match_max_range_meters, options.match_beam_step)
              .points) {
       add(to_node * point);
     }
@@ -390,10 +390,9 @@ struct LoopCloser::State {
 
   LoopClosureOptions options;
   LoopClosureStatistics stats;
-  std::deque<PreparedScan> scan_store;  // the nodes' scans (a deque keeps references stable)
-  std::vector<const PreparedScan*> scans;
-  std::vector<Pose2> poses;     // the filter's, one per node (rebased when the filter follows)
-  std::vector<Pose2> estimate;  // the graph's
+  std::vector<PreparedScan> scans;  // the nodes'
+  std::vector<Pose2> poses;         // the filter's, one per node (rebased when the filter follows)
+  std::vector<Pose2> estimate;      // the graph's
   std::vector<PoseGraphEdge> edges;
   std::vector<double> travel;
   std::vector<Submap> submaps;
@@ -409,6 +408,9 @@ struct LoopCloser::State {
   std::optional<ChainUncertainty> chain;
 
   bool Add(const PreparedScan& scan, const Pose2& pose);
+  // Optimizes from 'initial', drops the closures the others contradict and takes the solution;
+  // returns the dropped closures' indices into 'edges' as they were before.
+  std::vector<int> Optimize(const std::vector<Pose2>& initial);
 };
 
 LoopCloser::LoopCloser(const LoopClosureOptions& options)
@@ -459,21 +461,7 @@ void LoopCloser::Reoptimize(const std::vector<Pose2>& filter_poses) {
     state.estimate = filter_poses;
     return;
   }
-  const GatedPoseGraphSolution gated =
-      OptimizeRejectingInconsistent(initial, ScaledMotion(state.edges, state.scale),
-                                    state.options.max_residual_sigmas, state.options.optimizer);
-  ++state.stats.optimizations;
-  state.stats.optimizer_seconds += gated.solution.seconds;
-  std::vector<bool> drop(state.edges.size(), false);
-  for (const int rejected : gated.rejected) drop[static_cast<std::size_t>(rejected)] = true;
-  std::vector<PoseGraphEdge> kept;
-  for (std::size_t e = 0; e < state.edges.size(); ++e) {
-    if (!drop[e]) kept.push_back(state.edges[e]);
-  }
-  state.edges = std::move(kept);
-  state.stats.rejected += static_cast<int>(gated.rejected.size());
-  state.estimate = gated.solution.poses;
-  state.chain->Reposition(state.estimate);
+  state.Optimize(initial);
 }
 
 LoopClosureStatistics LoopCloser::statistics() const {
@@ -490,8 +478,7 @@ LoopClosureStatistics LoopCloser::statistics() const {
 }
 
 bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
-  scan_store.push_back(scan);
-  scans.push_back(&scan_store.back());
+  scans.push_back(scan);
   poses.push_back(pose);
   const std::size_t i = poses.size() - 1;
   const int node = static_cast<int>(i);
@@ -518,7 +505,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   }
   Submap& open = submaps.back();
   open.last = node;
-  InsertScan(*scans[i], poses[static_cast<std::size_t>(open.first)].Between(poses[i]), &open.grid);
+  InsertScan(scans[i], poses[static_cast<std::size_t>(open.first)].Between(poses[i]), &open.grid);
 
   if (i % static_cast<std::size_t>(options.search_every_nodes) != 0) return false;
   const auto search_start = std::chrono::steady_clock::now();
@@ -628,30 +615,32 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     scale = MotionNoiseScale(innovations, options.min_motion_noise_scale,
                              options.max_motion_noise_scale);
   }
+  const std::vector<int> rejected = Optimize(estimate);
+  if (std::find(rejected.begin(), rejected.end(), static_cast<int>(closure_index)) ==
+      rejected.end()) {
+    anchor = node;
+    last_accepted = closure;
+  }
+  return true;
+}
+
+std::vector<int> LoopCloser::State::Optimize(const std::vector<Pose2>& initial) {
   const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(
-      estimate, ScaledMotion(edges, scale), options.max_residual_sigmas, options.optimizer);
+      initial, ScaledMotion(edges, scale), options.max_residual_sigmas, options.optimizer);
   ++stats.optimizations;
   stats.optimizer_seconds += gated.solution.seconds;
-  bool kept_new = true;
   std::vector<bool> drop(edges.size(), false);
-  for (const int rejected : gated.rejected) {
-    drop[static_cast<std::size_t>(rejected)] = true;
-    if (static_cast<std::size_t>(rejected) == closure_index) kept_new = false;
-  }
+  for (const int rejected : gated.rejected) drop[static_cast<std::size_t>(rejected)] = true;
   std::vector<PoseGraphEdge> kept;
   for (std::size_t e = 0; e < edges.size(); ++e) {
     if (!drop[e]) kept.push_back(edges[e]);
   }
   edges = std::move(kept);
   stats.rejected += static_cast<int>(gated.rejected.size());
-  if (kept_new) {
-    anchor = node;
-    last_accepted = closure;
-  }
   // The solution was found without the rejected edges (the last solve), so it stands.
   estimate = gated.solution.poses;
   chain->Reposition(estimate);
-  return true;
+  return gated.rejected;
 }
 
 LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
