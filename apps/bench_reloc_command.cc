@@ -100,6 +100,12 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
                    "relative tolerance α applies (0: seed 001's α alone)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--decision-min-laser-score", args->options.method.decision_min_laser_score,
+                   "Laser fit (0-1) the place a pre-localization decides on must reach (0: any "
+                   "the pre-localizer keeps)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   command->add_flag("!--no-lock-recheck", args->options.method.recheck_lock,
                     "semantic-scanmatch: do not re-check the lock against later frames' objects");
   AddDetectorOptions(command, &args->detector,

@@ -8,6 +8,10 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
       (tie_->second.translation() - odometry.translation()).norm() > options_.forget_after_travel) {
     tie_.reset();
   }
+  if (poor_fit_ && (poor_fit_->odometry.translation() - odometry.translation()).norm() >
+                       options_.forget_after_travel) {
+    poor_fit_.reset();
+  }
   // No hypothesis: no pair of the objects seen fitted anywhere; nothing for or against.
   if (candidates.empty()) return false;
   const PoseCandidate& best = candidates.front();
@@ -20,7 +24,21 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
     leader_.reset();
     return false;
   }
+  if (best.laser_score < options_.min_laser_score) {
+    // The objects point to this place but the scan, refined there, disagrees with the map: the
+    // place is wrong or placed too far off for the laser to reach it. Either way it decides
+    // nothing, and no place elsewhere explaining fewer objects may be decided over it.
+    if (!poor_fit_ || explained >= poor_fit_->explained) {
+      poor_fit_ = PoorFit{best.pose, odometry, explained};
+    }
+    return false;
+  }
   if (tie_ && explained <= tie_->first) return false;
+  if (poor_fit_ && explained < poor_fit_->explained &&
+      prelocalizer_.DistinctPlaces(poor_fit_->pose * poor_fit_->odometry.Between(odometry),
+                                   best.pose)) {
+    return false;
+  }
   // The leader's place carried by odometry to where this pre-localization was made.
   const bool at_leader =
       leader_ &&
@@ -42,6 +60,7 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
 void DecisionGate::Reset() {
   leader_.reset();
   tie_.reset();
+  poor_fit_.reset();
 }
 
 }  // namespace semchain::localization

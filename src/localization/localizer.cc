@@ -117,7 +117,7 @@ Localizer::Localizer(const LocalizerMap& map, LocalizationMethod method,
       memory_(options.memory),
       decision_gate_(map.prelocalizer,
                      {options.decision_confirmations, options.decide_on_new_evidence,
-                      options.memory.max_travel}) {
+                      options.memory.max_travel, options.decision_min_laser_score}) {
   if (!IsScanMatcherMethod(method_)) amcl_.InitializeGlobal();
 }
 

@@ -115,6 +115,8 @@ struct LocalizerOptions {
   // memory.max_travel). 1 and false: every pre-localization decides on its own.
   int decision_confirmations = 2;
   bool decide_on_new_evidence = true;
+  // The laser fit a decided place needs (DecisionGateOptions::min_laser_score).
+  double decision_min_laser_score = 0.55;
   // Seeds the filter's random stream.
   std::uint64_t seed = 1;
 };
