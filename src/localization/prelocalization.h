@@ -227,6 +227,8 @@ class PreLocalizer {
   void AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j, int a, int b,
                          std::vector<PoseCandidate>* out) const;
   bool InFreeSpace(const Eigen::Vector2d& point) const;
+  // Whether 'point' lies in the map on a cell not occupied (free or unknown).
+  bool OffObstacles(const Eigen::Vector2d& point) const;
   // Moves 'candidate' where 'laser_refine' says the scan fits best, within the limits of
   // PreLocalizationOptions::laser_refine (agreement, matches and laser score updated).
   void RefineOneByLaser(const std::vector<ObservedObject>& observed,

@@ -380,6 +380,25 @@ TEST(PreLocalizerTest, LaserRefinementCorrectsTheObjectsPoseWithinItsLimits) {
   EXPECT_NEAR(error(kept), 0.12, 0.01);
   EXPECT_EQ(kept.front().agreeing, 2);
 
+  // The refined pose may lie on a cell the mapping run never saw (a robot wedged among
+  // furniture: office_floor seed 15, trial 5), not on an occupied one. (A looser clearance lets
+  // the objects' pose, 0.12 m from that cell, stand.)
+  PreLocalizationOptions near_cells = options;
+  near_cells.clearance = 0.05;
+  mapping::MapImage map_image = FreeRoom();
+  const auto set_truth_cell = [&](int value) {
+    const int x = static_cast<int>(truth.x / map_image.resolution);
+    const int y = static_cast<int>(truth.y / map_image.resolution);
+    map_image.cells[static_cast<std::size_t>(y * map_image.width + x)] =
+        static_cast<std::int8_t>(value);
+  };
+  set_truth_cell(-1);
+  const PreLocalizer unseen(map, map_image, near_cells);
+  EXPECT_LT(error(unseen.Localize(observed, fits_truth, nullptr, 0, to_truth)), 1e-9);
+  set_truth_cell(100);
+  const PreLocalizer occupied(map, map_image, near_cells);
+  EXPECT_NEAR(error(occupied.Localize(observed, fits_truth, nullptr, 0, to_truth)), 0.12, 0.01);
+
   // Switched off, the refinement is not asked.
   options.laser_refine = false;
   const PreLocalizer off(map, FreeRoom(), options);
