@@ -379,6 +379,14 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
       // places apart is moved once they do.
       const bool relocate = seeded_ && decided && LockedOnLookAlike(scan, observed, candidates);
       if (relocate) ++statistics_.lock_corrections;
+      if (decided) {
+        // The objects decided: the filter is held to the places explaining as many of them as
+        // the best (the laser fits look-alike places alike, and where the mapping run left the
+        // robot's corner unseen, a look-alike's walls better).
+        std::erase_if(candidates, [best = candidates.front().agreeing](const PoseCandidate& c) {
+          return c.agreeing < best;
+        });
+      }
       prior_ = ToHypotheses(candidates);
       prior_odometry_ = scan.odometry;
       if (!seeded_ || amcl_.FailureDetected() || relocate) {
