@@ -48,7 +48,19 @@ struct BuiltMap {
   semantic::SemanticMap semantic;
   std::vector<semantic::Keyframe> keyframes;
   double ate = 0.0;
+  std::vector<StampedPose> trajectory;  // the mapping run's SLAM estimate
 };
+
+// The SLAM of a simulated mapping run in 'run', with the benchmark's options.
+Result<mapping::SlamResult> MappingSlam(const fs::path& run, std::uint64_t seed) {
+  Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
+  if (!log.ok()) return log.status();
+  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
+  if (!scans.ok()) return scans.status();
+  mapping::SlamOptions slam_options;
+  slam_options.rbpf.seed = seed;
+  return mapping::RunSlam(*scans, slam_options);
+}
 
 // The bag of words of the mapping run (seed 000 §3.1 steps 1–2): a vocabulary trained on its
 // frames and its keyframes described with it.
@@ -87,16 +99,13 @@ Result<BuiltMap> BuildMap(const sim::World& world, const RelocBenchmarkOptions& 
   simulation.seed = seed;
   simulation.show_progress = false;
   SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(world, simulation, run));
-  Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
-  if (!log.ok()) return log.status();
-  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
-  if (!scans.ok()) return scans.status();
-  mapping::SlamOptions slam_options;
-  slam_options.rbpf.seed = seed;
-  const mapping::SlamResult slam = mapping::RunSlam(*scans, slam_options);
+  Result<mapping::SlamResult> slam_result = MappingSlam(run, seed);
+  if (!slam_result.ok()) return slam_result.status();
+  const mapping::SlamResult& slam = *slam_result;
 
   BuiltMap built;
   built.occupancy = mapping::GridToMapImage(slam.map);
+  built.trajectory = slam.trajectory;
   Result<std::vector<StampedPose>> truth = ReadTrajectory(run / "truth.txt");
   if (!truth.ok()) return truth.status();
   Result<AteResult> ate = EvaluateAte(slam.trajectory, *truth);
@@ -152,11 +161,12 @@ Status WriteBuiltMap(const BuiltMap& built, const fs::path& run) {
   SEMCHAIN_RETURN_IF_ERROR(semantic::WriteSemanticJson(dir / "semantic.json", built.semantic));
   SEMCHAIN_RETURN_IF_ERROR(
       semantic::WriteKeyframes(dir / "keyframes.json", {"..", built.keyframes}));
+  SEMCHAIN_RETURN_IF_ERROR(WriteTrajectory(dir / "trajectory.txt", built.trajectory));
   return WriteFileAtomically(dir / "ate.json",
                              nlohmann::json({{"ate_rmse_m", built.ate}}).dump() + "\n");
 }
 
-Result<BuiltMap> ReadBuiltMap(const fs::path& run) {
+Result<BuiltMap> ReadBuiltMap(const fs::path& run, std::uint64_t seed) {
   const fs::path dir = run / "map";
   BuiltMap built;
   Result<mapping::MapImage> occupancy = mapping::ReadMap(dir / "map.yaml");
@@ -175,6 +185,18 @@ Result<BuiltMap> ReadBuiltMap(const fs::path& run) {
     return Status::Error((dir / "ate.json").string() + ": expected {\"ate_rmse_m\": number}");
   }
   built.ate = parsed["ate_rmse_m"].get<double>();
+  if (fs::exists(dir / "trajectory.txt")) {
+    Result<std::vector<StampedPose>> trajectory = ReadTrajectory(dir / "trajectory.txt");
+    if (!trajectory.ok()) return trajectory.status();
+    built.trajectory = std::move(*trajectory);
+  } else {
+    // Kept before the trajectory was: the SLAM is deterministic for its seed, so running it
+    // again gives the kept map's trajectory.
+    Result<mapping::SlamResult> slam = MappingSlam(run, seed);
+    if (!slam.ok()) return slam.status();
+    built.trajectory = slam->trajectory;
+    SEMCHAIN_RETURN_IF_ERROR(WriteTrajectory(dir / "trajectory.txt", built.trajectory));
+  }
   return built;
 }
 
@@ -277,7 +299,7 @@ Result<RelocTrialRun> LoadRelocTrial(std::uint64_t seed, const RelocBenchmarkOpt
 }
 
 RelocTrialOutcome ScoreRelocTrace(const RelocTrace& trace, const std::vector<StampedPose>& truth,
-                                  const RelocBenchmarkOptions& options) {
+                                  const RelocBenchmarkOptions& options, const MapFrame* map_frame) {
   RelocTrialOutcome outcome;
   const std::size_t n = trace.estimates.size();
   const auto within = [&](std::size_t i) {
@@ -300,6 +322,10 @@ RelocTrialOutcome ScoreRelocTrace(const RelocTrace& trace, const std::vector<Sta
         (trace.prelocalization->translation() - t.translation()).cwiseAbs();
     outcome.prelocalization_error_rad =
         std::abs(NormalizeAngle(trace.prelocalization->theta - t.theta));
+    if (map_frame != nullptr) {
+      outcome.prelocalization_error_map =
+          (trace.prelocalization->translation() - map_frame->FromWorld(t).translation()).cwiseAbs();
+    }
   }
   if (n > 0 && trace.estimates.back()) {
     outcome.localized = true;
@@ -347,6 +373,8 @@ void Accumulate(const RelocTrialOutcome& outcome, RelocMethodStats* stats) {
     stats->prelocalization_error_x_m += outcome.prelocalization_error.x();
     stats->prelocalization_error_y_m += outcome.prelocalization_error.y();
     stats->prelocalization_error_deg += outcome.prelocalization_error_rad * 180.0 / M_PI;
+    stats->prelocalization_error_map_x_m += outcome.prelocalization_error_map.x();
+    stats->prelocalization_error_map_y_m += outcome.prelocalization_error_map.y();
   }
   stats->mean_time_all_s += outcome.time;
   stats->mean_cpu_all_ms += 1000.0 * outcome.cpu;
@@ -381,6 +409,8 @@ void Finish(RelocMethodStats* stats) {
     stats->prelocalization_error_x_m /= stats->prelocalized;
     stats->prelocalization_error_y_m /= stats->prelocalized;
     stats->prelocalization_error_deg /= stats->prelocalized;
+    stats->prelocalization_error_map_x_m /= stats->prelocalized;
+    stats->prelocalization_error_map_y_m /= stats->prelocalized;
   }
 }
 
@@ -443,8 +473,8 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
     }
   } cleanup{keep ? fs::path() : work};
 
-  Result<BuiltMap> built =
-      reuse ? ReadBuiltMap(work / "mapping") : BuildMap(*world, options, work / "mapping");
+  Result<BuiltMap> built = reuse ? ReadBuiltMap(work / "mapping", options.seed)
+                                 : BuildMap(*world, options, work / "mapping");
   if (!built.ok()) return built.status();
   if (keep && !reuse) {
     SEMCHAIN_RETURN_IF_ERROR(WriteBuiltMap(*built, work / "mapping"));
@@ -454,6 +484,10 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   if (built->semantic.objects.empty()) {
     return Status::Error(world_path.string() + ": the mapping run found no objects");
   }
+  Result<std::vector<StampedPose>> mapping_truth = ReadTrajectory(work / "mapping" / "truth.txt");
+  if (!mapping_truth.ok()) return mapping_truth.status();
+  Result<MapFrame> map_frame = MapFrame::FromTrajectories(built->trajectory, *mapping_truth);
+  if (!map_frame.ok()) return map_frame.status();
   // AMCL's odometry noise is a property of the robot: as a user tunes it for theirs, it is set
   // from the simulated robot's odometry model (the same for every method), with a margin.
   localization::AmclOptions amcl;
@@ -496,7 +530,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
     for (const std::string& method : options.methods) {
       const RelocTrace trace = RunRelocMethod(*localization::ParseLocalizationMethod(method), map,
                                               options.method, trial->inputs);
-      const RelocTrialOutcome outcome = ScoreRelocTrace(trace, trial->truth, options);
+      const RelocTrialOutcome outcome = ScoreRelocTrace(trace, trial->truth, options, &*map_frame);
       Accumulate(outcome, &result.methods[method]);
       const Pose2& start = (*starts)[static_cast<std::size_t>(k)];
       RelocTrialRecord record;
@@ -519,6 +553,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
         record.prelocalization_error =
             Eigen::Vector3d(outcome.prelocalization_error.x(), outcome.prelocalization_error.y(),
                             outcome.prelocalization_error_rad * 180.0 / M_PI);
+        record.prelocalization_error_map = outcome.prelocalization_error_map;
       }
       result.runs[method].push_back(record);
     }
@@ -547,7 +582,9 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                      {"prelocalized", s.prelocalized},
                      {"prelocalization_error_x_m", s.prelocalization_error_x_m},
                      {"prelocalization_error_y_m", s.prelocalization_error_y_m},
-                     {"prelocalization_error_deg", s.prelocalization_error_deg}};
+                     {"prelocalization_error_deg", s.prelocalization_error_deg},
+                     {"prelocalization_error_map_x_m", s.prelocalization_error_map_x_m},
+                     {"prelocalization_error_map_y_m", s.prelocalization_error_map_y_m}};
   }
   nlohmann::json runs = nlohmann::json::object();
   for (const auto& [name, records] : result.runs) {
@@ -557,6 +594,11 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
       if (r.prelocalization_error) {
         prelocalization_error = {r.prelocalization_error->x(), r.prelocalization_error->y(),
                                  r.prelocalization_error->z()};
+      }
+      nlohmann::json prelocalization_error_map = nullptr;
+      if (r.prelocalization_error_map) {
+        prelocalization_error_map = {r.prelocalization_error_map->x(),
+                                     r.prelocalization_error_map->y()};
       }
       list.push_back({{"trial", r.trial},
                       {"start", {r.start[0], r.start[1], r.start[2]}},
@@ -571,7 +613,8 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                       {"single_object_prelocalizations", r.single_object_prelocalizations},
                       {"undecided_prelocalizations", r.undecided_prelocalizations},
                       {"lock_corrections", r.lock_corrections},
-                      {"prelocalization_error", prelocalization_error}});
+                      {"prelocalization_error", prelocalization_error},
+                      {"prelocalization_error_map", prelocalization_error_map}});
     }
     runs[name] = list;
   }
@@ -596,11 +639,13 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
                      " objects; detections: " + result.detections_source + "\n\n";
   text +=
       "Time, CPU and search CPU: means over the successful trials (until convergence), then "
-      "over all trials (a failed trial charged for its whole time, up to the limit).\n\n"
+      "over all trials (a failed trial charged for its whole time, up to the limit). "
+      "Pre-localization error: the first hypothesis a method accepted, against the truth and "
+      "against the truth carried into the SLAM map's frame (the map's own error taken out).\n\n"
       "| method | success | mean time (s) | mean CPU (ms) | search CPU (ms) | all trials: "
       "time (s) / CPU (ms) / search CPU (ms) | iterations | error (m) | error (deg) "
-      "| pre-localization error x / y (m) |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n";
+      "| pre-localization error x / y (m) | in the map's frame x / y (m) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [name, s] : result.methods) {
     const bool scan_matcher =
         localization::IsScanMatcherMethod(*localization::ParseLocalizationMethod(name));
@@ -611,17 +656,21 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
       std::snprintf(search_cpu_all, sizeof(search_cpu_all), "%.2f", s.mean_search_cpu_all_ms);
     }
     char prelocalization[64] = "–";
+    char prelocalization_map[64] = "–";
     if (s.prelocalized > 0) {
       std::snprintf(prelocalization, sizeof(prelocalization), "%.3f / %.3f",
                     s.prelocalization_error_x_m, s.prelocalization_error_y_m);
+      std::snprintf(prelocalization_map, sizeof(prelocalization_map), "%.3f / %.3f",
+                    s.prelocalization_error_map_x_m, s.prelocalization_error_map_y_m);
     }
     char line[512];
     std::snprintf(line, sizeof(line),
                   "| %s | %d/%d (%.1f %%) | %.2f | %.1f | %s | %.2f / %.1f / %s | %.1f | %.3f | "
-                  "%.2f | %s |\n",
+                  "%.2f | %s | %s |\n",
                   name.c_str(), s.successes, s.trials, 100.0 * s.success_rate, s.mean_time_s,
                   s.mean_cpu_ms, search_cpu, s.mean_time_all_s, s.mean_cpu_all_ms, search_cpu_all,
-                  s.mean_iterations, s.mean_error_m, s.mean_error_deg, prelocalization);
+                  s.mean_iterations, s.mean_error_m, s.mean_error_deg, prelocalization,
+                  prelocalization_map);
     text += line;
   }
   return text;

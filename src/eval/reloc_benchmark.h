@@ -9,6 +9,7 @@
 
 #include "core/pose2.h"
 #include "core/status.h"
+#include "eval/map_frame.h"
 #include "eval/reloc_methods.h"
 #include "io/trajectory_io.h"
 #include "sim/world.h"
@@ -73,6 +74,10 @@ struct RelocMethodStats {
   double prelocalization_error_x_m = 0.0;
   double prelocalization_error_y_m = 0.0;
   double prelocalization_error_deg = 0.0;  // mean |θ| error
+  // The same against the truth carried into the map's frame (MapFrame): the relocalizer's own
+  // error, without the SLAM map's.
+  double prelocalization_error_map_x_m = 0.0;
+  double prelocalization_error_map_y_m = 0.0;
 };
 
 // One method on one trial.
@@ -94,6 +99,8 @@ struct RelocTrialRecord {
   int lock_corrections = 0;
   // |x|, |y| (m) and |θ| (deg) error of the first pre-localization, when there was one.
   std::optional<Eigen::Vector3d> prelocalization_error;
+  // |x|, |y| (m) of it in the map's frame (RelocMethodStats::prelocalization_error_map_x_m).
+  std::optional<Eigen::Vector2d> prelocalization_error_map;
 };
 
 struct RelocBenchmarkResult {
@@ -140,11 +147,14 @@ struct RelocTrialOutcome {
   bool prelocalized = false;  // the first pre-localization's |x|, |y| and |θ| error
   Eigen::Vector2d prelocalization_error = Eigen::Vector2d::Zero();
   double prelocalization_error_rad = 0.0;
+  Eigen::Vector2d prelocalization_error_map = Eigen::Vector2d::Zero();  // with a map frame
 };
 
-// Scores 'trace' against 'truth' (one pose per scan) with the options' tolerances and limit.
+// Scores 'trace' against 'truth' (one pose per scan) with the options' tolerances and limit;
+// with 'map_frame' (may be null) also the pre-localization against the truth in the map's frame.
 RelocTrialOutcome ScoreRelocTrace(const RelocTrace& trace, const std::vector<StampedPose>& truth,
-                                  const RelocBenchmarkOptions& options);
+                                  const RelocBenchmarkOptions& options,
+                                  const MapFrame* map_frame = nullptr);
 
 // 'progress' (may be empty) is called with (trials done, trials).
 Result<RelocBenchmarkResult> RunRelocBenchmark(const std::filesystem::path& world,

@@ -84,5 +84,27 @@ TEST(ScoreRelocTraceTest, OnlyTheFinalStreakCounts) {
   EXPECT_DOUBLE_EQ(heading.time, 5.0);
 }
 
+// A pre-localization that puts the robot where a map 0.08 m off shows it: 0.08 m off the truth,
+// exact in the map's frame.
+TEST(ScoreRelocTraceTest, ThePreLocalizationIsAlsoScoredInTheMapsFrame) {
+  Fixture f;
+  const Pose2 map_offset(0.08, -0.03, 0.0);
+  std::vector<StampedPose> mapping_truth;
+  std::vector<StampedPose> mapping_estimate;
+  for (int i = 0; i < 10; ++i) {
+    mapping_truth.push_back({0.1 * i, Pose2(0.5 * i, 0.0, 0.0)});
+    mapping_estimate.push_back({0.1 * i, map_offset * mapping_truth.back().pose});
+  }
+  const Result<MapFrame> frame = MapFrame::FromTrajectories(mapping_estimate, mapping_truth);
+  ASSERT_TRUE(frame.ok());
+  f.trace.prelocalization = map_offset * f.truth[2].pose;
+  f.trace.prelocalization_scan = 2;
+  const RelocTrialOutcome outcome = ScoreRelocTrace(f.trace, f.truth, f.options, &*frame);
+  ASSERT_TRUE(outcome.prelocalized);
+  EXPECT_NEAR(outcome.prelocalization_error.x(), 0.08, 1e-12);
+  EXPECT_NEAR(outcome.prelocalization_error.y(), 0.03, 1e-12);
+  EXPECT_NEAR(outcome.prelocalization_error_map.norm(), 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace semchain::eval
