@@ -99,6 +99,12 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "observation_memory", &p.localizer.observation_memory));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "single_object", &p.localizer.single_object));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "recheck_lock", &p.localizer.recheck_lock));
+  SEMCHAIN_RETURN_IF_ERROR(
+      ReadDouble(nh, "decision_min_laser_score", &p.localizer.decision_min_laser_score));
+  if (!(p.localizer.decision_min_laser_score >= 0.0 &&
+        p.localizer.decision_min_laser_score <= 1.0)) {
+    return Status::Error("parameter ~decision_min_laser_score must be in [0, 1]");
+  }
   if (!(p.transform_tolerance >= 0.0) || !(p.camera_max_range > 0.0)) {
     return Status::Error("parameters ~transform_tolerance must be >= 0, ~camera_max_range > 0");
   }
