@@ -25,7 +25,8 @@
 //    ('forget_after_travel') a place elsewhere must explain as many objects as it did. Chosen on
 //    development recordings: look-alike places accepted on a chance pair fitted 0.43 and 0.45
 //    (office_floor seed 13, lab_loop seed 1), the right office placed 0.54 m off 0.33
-//    (office_floor seed 7), where 298 of 299 right acceptances fitted 0.63–0.99.
+//    (office_floor seed 7), where 298 of 299 right acceptances fitted 0.63–1.00. Wrong
+//    places that fit well (mirrored look-alikes) are left to the other rules.
 namespace semchain::localization {
 
 struct DecisionGateOptions {
