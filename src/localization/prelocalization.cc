@@ -61,6 +61,10 @@ bool PreLocalizationOptions::Validate(std::string* error) const {
     *error = "distance_slack must be >= 0";
     return false;
   }
+  if (!(unknown_reach >= 0.0)) {
+    *error = "unknown_reach must be >= 0";
+    return false;
+  }
   if (!(heading_agreement > 0.0) || !(agreement_radius > 0.0) || max_hypotheses < 1 ||
       !(position_std_base > 0.0) || !(heading_std > 0.0) || clearance < 0.0 ||
       !(centre_std_base > 0.0)) {
@@ -213,6 +217,10 @@ PreLocalizer::PreLocalizer(const semantic::SemanticMap& map, const mapping::MapI
     cv::distanceTransform(mapping::MapCellMask(occupancy, mapping::CellState::kFree), clearance_,
                           cv::DIST_L2, cv::DIST_MASK_PRECISE);
     clearance_ *= occupancy.resolution;
+    cv::Mat not_free;
+    cv::bitwise_not(mapping::MapCellMask(occupancy, mapping::CellState::kFree), not_free);
+    cv::distanceTransform(not_free, to_free_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    to_free_ *= occupancy.resolution;
   }
 }
 
@@ -282,6 +290,16 @@ bool PreLocalizer::OffObstacles(const Eigen::Vector2d& point) const {
          mapping::ClassifyMapCell(occupancy_, cell.x(), cell.y()) != mapping::CellState::kOccupied;
 }
 
+bool PreLocalizer::Standable(const Eigen::Vector2d& point) const {
+  if (InFreeSpace(point)) return true;
+  if (options_.unknown_reach <= 0.0 || to_free_.empty()) return false;
+  const semantic::GridGeometry geometry = semantic::GeometryOf(occupancy_);
+  const Eigen::Vector2i cell = geometry.CellOf(point);
+  return geometry.Contains(cell) &&
+         mapping::ClassifyMapCell(occupancy_, cell.x(), cell.y()) == mapping::CellState::kUnknown &&
+         to_free_.at<float>(cell.y(), cell.x()) <= options_.unknown_reach;
+}
+
 void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j,
                                      int a, int b, std::vector<PoseCandidate>* out) const {
   const semantic::SemanticObject& oa = objects_[a];
@@ -348,8 +366,8 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
       const std::array<Match, 2> pair = {Match{i, a}, Match{j, b}};
       Refine(observed, pair, &candidate.pose);
     }
-    // Free space first: one cell read.
-    if (!InFreeSpace(candidate.pose.translation())) continue;
+    // Where a robot can stand first: a cell read or two.
+    if (!Standable(candidate.pose.translation())) continue;
     if (!headings_agree(candidate.pose.translation())) continue;
     candidate.covariance =
         Eigen::Vector3d(sigma * sigma, sigma * sigma, options_.heading_std * options_.heading_std)
@@ -558,7 +576,7 @@ void PreLocalizer::Refine(const std::vector<ObservedObject>& observed,
   const Eigen::Vector2d t = mapped_mean - Eigen::Rotation2Dd(theta) * seen_mean;
   const Pose2 refined(t.x(), t.y(), theta);
   // An alignment that lands outside free space or far away is not trusted.
-  if (InFreeSpace(refined.translation()) &&
+  if (Standable(refined.translation()) &&
       (refined.translation() - pose->translation()).norm() < 1.0) {
     *pose = refined;
   }

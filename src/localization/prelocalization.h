@@ -59,6 +59,11 @@ struct PreLocalizationOptions {
   // A hypothesis must lie in free space of the occupancy map at least this far (metres) from
   // anything occupied.
   double clearance = 0.15;
+  // ... or on a cell the mapping run never saw (neither free nor occupied) within this distance
+  // (metres) of its free space: a robot wedged between furniture and a wall stands where the
+  // mapping run's rays never reached (office_floor's south-east corner, development seeds 7 and
+  // 14–17). 0: free space only.
+  double unknown_reach = 0.5;
   // Hypotheses closer than this (metres and radians) are one.
   double merge_distance = 0.25;
   double merge_heading = 0.2;
@@ -229,6 +234,9 @@ class PreLocalizer {
   bool InFreeSpace(const Eigen::Vector2d& point) const;
   // Whether 'point' lies in the map on a cell not occupied (free or unknown).
   bool OffObstacles(const Eigen::Vector2d& point) const;
+  // Whether a robot may stand at 'point': InFreeSpace, or an unknown cell within unknown_reach of
+  // the free space.
+  bool Standable(const Eigen::Vector2d& point) const;
   // Moves 'candidate' where 'laser_refine' says the scan fits best, within the limits of
   // PreLocalizationOptions::laser_refine (agreement, matches and laser score updated).
   void RefineOneByLaser(const std::vector<ObservedObject>& observed,
@@ -279,6 +287,7 @@ class PreLocalizer {
   std::vector<std::vector<IndexedPair>> pairs_;
   mapping::MapImage occupancy_;
   cv::Mat clearance_;  // CV_32F metres to the nearest non-free cell (0 on it), row = cell y
+  cv::Mat to_free_;    // CV_32F metres to the nearest free cell (0 on it), row = cell y
   PreLocalizationOptions options_;
 };
 

@@ -130,6 +130,36 @@ TEST(PreLocalizerTest, TwoObjectsGiveThePose) {
   for (const PoseCandidate& h : hypotheses) EXPECT_LT(h.pose.y, 5.0);
 }
 
+// A robot wedged where the mapping run's rays never reached (office_floor's south-east corner):
+// its pose lies on unknown cells beside the free space. Within unknown_reach of it the pair still
+// places it; deep in the unknown, or with unknown_reach 0, it does not.
+TEST(PreLocalizerTest, ARobotOnUnseenCellsBesideTheFreeSpaceIsPlaced) {
+  semantic::SemanticMap map;
+  map.objects = {Square(4, "cabinet", 3.0, 5.0, 0.2), Square(7, "bucket", 5.0, 5.2, 0.15)};
+  const Pose2 truth(4.0, 2.5, 1.4);
+  const std::vector<ObservedObject> observed = {See(truth, map.objects[0]),
+                                                See(truth, map.objects[1])};
+  // Unknown cells for x in [3.6, 4.4], y below 2.8: the truth is 0.3 m from the free space above.
+  mapping::MapImage unseen = FreeRoom();
+  for (int y = 1; y < 56; ++y) {
+    for (int x = 72; x < 88; ++x) {
+      unseen.cells[static_cast<std::size_t>(y * unseen.width + x)] = -1;
+    }
+  }
+  const auto placed = [&](const PreLocalizer& localizer) {
+    const std::vector<PoseCandidate> hypotheses = localizer.Localize(observed);
+    return !hypotheses.empty() &&
+           (hypotheses.front().pose.translation() - truth.translation()).norm() < 1e-3;
+  };
+  EXPECT_TRUE(placed(PreLocalizer(map, unseen, PreLocalizationOptions())));
+  PreLocalizationOptions free_only;
+  free_only.unknown_reach = 0.0;
+  EXPECT_FALSE(placed(PreLocalizer(map, unseen, free_only)));
+  PreLocalizationOptions short_reach;
+  short_reach.unknown_reach = 0.2;
+  EXPECT_FALSE(placed(PreLocalizer(map, unseen, short_reach)));
+}
+
 // Two rooms with the same cabinet–bucket pair; only room B also has a chair.
 semantic::SemanticMap LookAlikeRooms() {
   semantic::SemanticMap map;
