@@ -101,6 +101,12 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   command
+      ->add_option("--unknown-reach", args->options.prelocalization.unknown_reach,
+                   "Metres from the map's free space within which a pre-localization hypothesis "
+                   "may lie on cells the mapping run never saw (0: free space only)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command
       ->add_option("--decision-min-laser-score", args->options.method.decision_min_laser_score,
                    "Laser fit (0-1) the place a pre-localization decides on must reach (0: any "
                    "the pre-localizer keeps)")
