@@ -1,35 +1,22 @@
 #include "eval/map_frame.h"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
+#include <optional>
+
+#include "io/trajectory_lookup.h"
 
 namespace semchain::eval {
 
 Result<MapFrame> MapFrame::FromTrajectories(const std::vector<StampedPose>& estimate,
                                             const std::vector<StampedPose>& truth,
                                             double timestamp_tolerance_s) {
-  std::vector<StampedPose> by_time = truth;
-  std::sort(by_time.begin(), by_time.end(),
-            [](const StampedPose& a, const StampedPose& b) { return a.timestamp < b.timestamp; });
+  const TrajectoryLookup lookup(truth);
   MapFrame frame;
   for (const StampedPose& pose : estimate) {
-    const auto next =
-        std::lower_bound(by_time.begin(), by_time.end(), pose.timestamp,
-                         [](const StampedPose& p, double t) { return p.timestamp < t; });
-    const StampedPose* nearest = nullptr;
-    double gap = std::numeric_limits<double>::infinity();
-    if (next != by_time.end()) {
-      nearest = &*next;
-      gap = next->timestamp - pose.timestamp;
-    }
-    if (next != by_time.begin() && pose.timestamp - std::prev(next)->timestamp < gap) {
-      nearest = &*std::prev(next);
-      gap = pose.timestamp - nearest->timestamp;
-    }
-    if (nearest == nullptr || gap > timestamp_tolerance_s) continue;
-    frame.truth_.push_back(nearest->pose);
-    frame.map_from_world_.push_back(pose.pose * nearest->pose.Inverse());
+    const std::optional<Pose2> true_pose = lookup.Nearest(pose.timestamp, timestamp_tolerance_s);
+    if (!true_pose) continue;
+    frame.truth_.push_back(*true_pose);
+    frame.map_from_world_.push_back(pose.pose * true_pose->Inverse());
   }
   if (frame.truth_.empty()) {
     return Status::Error("map frame: no estimated pose of the mapping run has a truth pose");

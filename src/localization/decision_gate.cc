@@ -4,14 +4,12 @@ namespace semchain::localization {
 
 bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Pose2& odometry,
                           int hidden_objects) {
-  if (tie_ &&
-      (tie_->second.translation() - odometry.translation()).norm() > options_.forget_after_travel) {
-    tie_.reset();
-  }
-  if (poor_fit_ && (poor_fit_->odometry.translation() - odometry.translation()).norm() >
-                       options_.forget_after_travel) {
-    poor_fit_.reset();
-  }
+  // Evidence noted at 'then' (odometry) is forgotten once the robot has moved far enough.
+  const auto forgotten = [&](const Pose2& then) {
+    return (then.translation() - odometry.translation()).norm() > options_.forget_after_travel;
+  };
+  if (tie_ && forgotten(tie_->second)) tie_.reset();
+  if (poor_fit_ && forgotten(poor_fit_->odometry)) poor_fit_.reset();
   // No hypothesis: no pair of the objects seen fitted anywhere; nothing for or against.
   if (candidates.empty()) return false;
   const PoseCandidate& best = candidates.front();

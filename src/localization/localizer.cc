@@ -24,6 +24,14 @@ std::vector<PoseHypothesis> ToHypotheses(const std::vector<PoseCandidate>& candi
   return hypotheses;
 }
 
+// Drops the hypotheses explaining fewer objects than the best (the first; 'candidates' not
+// empty).
+void KeepMostExplaining(std::vector<PoseCandidate>* candidates) {
+  std::erase_if(*candidates, [best = candidates->front().agreeing](const PoseCandidate& c) {
+    return c.agreeing < best;
+  });
+}
+
 // The covariance of a renewed prior, relative to the pre-localization's.
 constexpr double kRenewedPriorScale = 4.0;
 
@@ -383,9 +391,7 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
         // The objects decided: the filter is held to the places explaining as many of them as
         // the best (the laser fits look-alike places alike, and where the mapping run left the
         // robot's corner unseen, a look-alike's walls better).
-        std::erase_if(candidates, [best = candidates.front().agreeing](const PoseCandidate& c) {
-          return c.agreeing < best;
-        });
+        KeepMostExplaining(&candidates);
       }
       prior_ = ToHypotheses(candidates);
       prior_odometry_ = scan.odometry;
@@ -527,9 +533,7 @@ std::optional<RelocalizationResult> Localizer::Relocalize(const StampedScan& sca
   if (!candidates.empty()) {
     // The laser fits look-alike places alike: it only chooses among the hypotheses that explain
     // the most objects.
-    std::erase_if(candidates, [best = candidates.front().agreeing](const PoseCandidate& c) {
-      return c.agreeing < best;
-    });
+    KeepMostExplaining(&candidates);
     return map_.matcher.Relocalize(ScanPoints(scan), ToHypotheses(candidates));
   }
   // Without a semantic prior after a full turn (no two objects in view anywhere around), the

@@ -214,11 +214,11 @@ PreLocalizer::PreLocalizer(const semantic::SemanticMap& map, const mapping::MapI
               [](const IndexedPair& x, const IndexedPair& y) { return x.distance < y.distance; });
   }
   if (occupancy.width > 0 && occupancy.height > 0) {
-    cv::distanceTransform(mapping::MapCellMask(occupancy, mapping::CellState::kFree), clearance_,
-                          cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    const cv::Mat free = mapping::MapCellMask(occupancy, mapping::CellState::kFree);
+    cv::distanceTransform(free, clearance_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
     clearance_ *= occupancy.resolution;
     cv::Mat not_free;
-    cv::bitwise_not(mapping::MapCellMask(occupancy, mapping::CellState::kFree), not_free);
+    cv::bitwise_not(free, not_free);
     cv::distanceTransform(not_free, to_free_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
     to_free_ *= occupancy.resolution;
   }
@@ -273,31 +273,36 @@ std::vector<std::tuple<int, int, double>> PreLocalizer::RetrievePairs(const std:
   return found;
 }
 
-bool PreLocalizer::InFreeSpace(const Eigen::Vector2d& point) const {
-  if (clearance_.empty()) return false;
+std::optional<Eigen::Vector2i> PreLocalizer::MapCell(const Eigen::Vector2d& point) const {
   const semantic::GridGeometry geometry = semantic::GeometryOf(occupancy_);
   const Eigen::Vector2i cell = geometry.CellOf(point);
-  if (!geometry.Contains(cell)) return false;
+  if (!geometry.Contains(cell)) return std::nullopt;
+  return cell;
+}
+
+bool PreLocalizer::InFreeSpace(const Eigen::Vector2d& point) const {
+  if (clearance_.empty()) return false;
+  const std::optional<Eigen::Vector2i> cell = MapCell(point);
+  if (!cell) return false;
   // The distance to the nearest non-free cell is 0 exactly on the cells that are not free.
-  const float clearance = clearance_.at<float>(cell.y(), cell.x());
+  const float clearance = clearance_.at<float>(cell->y(), cell->x());
   return clearance > 0.0f && clearance >= options_.clearance;
 }
 
 bool PreLocalizer::OffObstacles(const Eigen::Vector2d& point) const {
-  const semantic::GridGeometry geometry = semantic::GeometryOf(occupancy_);
-  const Eigen::Vector2i cell = geometry.CellOf(point);
-  return geometry.Contains(cell) &&
-         mapping::ClassifyMapCell(occupancy_, cell.x(), cell.y()) != mapping::CellState::kOccupied;
+  const std::optional<Eigen::Vector2i> cell = MapCell(point);
+  return cell && mapping::ClassifyMapCell(occupancy_, cell->x(), cell->y()) !=
+                     mapping::CellState::kOccupied;
 }
 
 bool PreLocalizer::Standable(const Eigen::Vector2d& point) const {
   if (InFreeSpace(point)) return true;
   if (options_.unknown_reach <= 0.0 || to_free_.empty()) return false;
-  const semantic::GridGeometry geometry = semantic::GeometryOf(occupancy_);
-  const Eigen::Vector2i cell = geometry.CellOf(point);
-  return geometry.Contains(cell) &&
-         mapping::ClassifyMapCell(occupancy_, cell.x(), cell.y()) == mapping::CellState::kUnknown &&
-         to_free_.at<float>(cell.y(), cell.x()) <= options_.unknown_reach;
+  const std::optional<Eigen::Vector2i> cell = MapCell(point);
+  return cell &&
+         mapping::ClassifyMapCell(occupancy_, cell->x(), cell->y()) ==
+             mapping::CellState::kUnknown &&
+         to_free_.at<float>(cell->y(), cell->x()) <= options_.unknown_reach;
 }
 
 void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j,

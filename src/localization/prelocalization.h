@@ -231,6 +231,8 @@ class PreLocalizer {
   // Hypotheses from observed objects i and j seen as mapped objects a and b.
   void AddPairHypotheses(const std::vector<ObservedObject>& observed, int i, int j, int a, int b,
                          std::vector<PoseCandidate>* out) const;
+  // The occupancy map's cell holding 'point' (x, y), when the map covers it.
+  std::optional<Eigen::Vector2i> MapCell(const Eigen::Vector2d& point) const;
   bool InFreeSpace(const Eigen::Vector2d& point) const;
   // Whether 'point' lies in the map on a cell not occupied (free or unknown).
   bool OffObstacles(const Eigen::Vector2d& point) const;

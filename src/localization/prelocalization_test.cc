@@ -112,6 +112,20 @@ ObservedObject See(const Pose2& pose, const semantic::SemanticObject& object) {
   return seen;
 }
 
+// A cabinet and a bucket, and what a robot at 'truth' sees of them.
+struct SeenPair {
+  semantic::SemanticMap map;
+  Pose2 truth;
+  std::vector<ObservedObject> observed;
+};
+SeenPair CabinetAndBucketSeen() {
+  SeenPair seen;
+  seen.map.objects = {Square(4, "cabinet", 3.0, 5.0, 0.2), Square(7, "bucket", 5.0, 5.2, 0.15)};
+  seen.truth = Pose2(4.0, 2.5, 1.4);
+  seen.observed = {See(seen.truth, seen.map.objects[0]), See(seen.truth, seen.map.objects[1])};
+  return seen;
+}
+
 TEST(PreLocalizerTest, TwoObjectsGiveThePose) {
   semantic::SemanticMap map;
   map.objects = {Square(4, "cabinet", 3.0, 5.0, 0.2), Square(7, "bucket", 5.0, 5.2, 0.15),
@@ -134,11 +148,10 @@ TEST(PreLocalizerTest, TwoObjectsGiveThePose) {
 // its pose lies on unknown cells beside the free space. Within unknown_reach of it the pair still
 // places it; deep in the unknown, or with unknown_reach 0, it does not.
 TEST(PreLocalizerTest, ARobotOnUnseenCellsBesideTheFreeSpaceIsPlaced) {
-  semantic::SemanticMap map;
-  map.objects = {Square(4, "cabinet", 3.0, 5.0, 0.2), Square(7, "bucket", 5.0, 5.2, 0.15)};
-  const Pose2 truth(4.0, 2.5, 1.4);
-  const std::vector<ObservedObject> observed = {See(truth, map.objects[0]),
-                                                See(truth, map.objects[1])};
+  SeenPair seen = CabinetAndBucketSeen();
+  semantic::SemanticMap& map = seen.map;
+  const Pose2& truth = seen.truth;
+  const std::vector<ObservedObject>& observed = seen.observed;
   // Unknown cells for x in [3.6, 4.4], y below 2.8: the truth is 0.3 m from the free space above.
   mapping::MapImage unseen = FreeRoom();
   for (int y = 1; y < 56; ++y) {
@@ -345,11 +358,10 @@ TEST(PreLocalizerTest, SingleObjectCircleAndLaserGiveThePose) {
 // place the robot that far off; the laser refinement moves it back, but only within its limits
 // and only to a pose the scan fits better that explains as many objects.
 TEST(PreLocalizerTest, LaserRefinementCorrectsTheObjectsPoseWithinItsLimits) {
-  semantic::SemanticMap map;
-  map.objects = {Square(4, "cabinet", 3.0, 5.0, 0.2), Square(7, "bucket", 5.0, 5.2, 0.15)};
-  const Pose2 truth(4.0, 2.5, 1.4);
-  const std::vector<ObservedObject> observed = {See(truth, map.objects[0]),
-                                                See(truth, map.objects[1])};
+  SeenPair seen = CabinetAndBucketSeen();
+  semantic::SemanticMap& map = seen.map;
+  const Pose2& truth = seen.truth;
+  const std::vector<ObservedObject>& observed = seen.observed;
   for (semantic::SemanticObject& object : map.objects) {
     object.center.x() += 0.12;
     for (Eigen::Vector2d& corner : object.footprint) corner.x() += 0.12;
