@@ -278,8 +278,34 @@ bool Localizer::LockedOnLookAlike(const StampedScan& scan,
   // The filter's pose now (its last update moved on by odometry), as the objects were seen.
   const Pose2 now = *filter_pose_ * filter_odometry_.Between(scan.odometry);
   const PoseCandidate& best = candidates.front();
-  return map_.prelocalizer.DistinctPlaces(best.pose, now) &&
-         map_.prelocalizer.Agreeing(observed, now) + options_.relocate_margin <= best.agreeing;
+  if (!map_.prelocalizer.DistinctPlaces(best.pose, now)) return false;
+  const int explained_now = map_.prelocalizer.Agreeing(observed, now);
+  if (explained_now + options_.relocate_margin <= best.agreeing) return true;
+  // Particles that gathered at a place while the look-alikes were undecided stand by nothing
+  // the objects decided: they follow the decided place once it explains more of the objects.
+  const bool decided_before =
+      std::any_of(decided_places_.begin(), decided_places_.end(), [&](const Sighting& place) {
+        return !map_.prelocalizer.DistinctPlaces(place.At(scan.odometry), now);
+      });
+  return !decided_before && explained_now < best.agreeing;
+}
+
+void Localizer::NoteDecidedPlace(const Pose2& pose, const Pose2& odometry) {
+  // Places decided on before the robot moved past the observation memory's horizon were decided
+  // on objects it no longer remembers.
+  std::erase_if(decided_places_, [&](const Sighting& place) {
+    return (place.odometry.translation() - odometry.translation()).norm() >
+           options_.memory.max_travel;
+  });
+  const auto same =
+      std::find_if(decided_places_.begin(), decided_places_.end(), [&](const Sighting& place) {
+        return !map_.prelocalizer.DistinctPlaces(place.At(odometry), pose);
+      });
+  if (same != decided_places_.end()) {
+    *same = {pose, odometry};
+  } else {
+    decided_places_.push_back({pose, odometry});
+  }
 }
 
 // Remembers a frame's objects; returns what pre-localization may use now: nothing when the
@@ -388,6 +414,7 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
       const bool relocate = seeded_ && decided && LockedOnLookAlike(scan, observed, candidates);
       if (relocate) ++statistics_.lock_corrections;
       if (decided) {
+        NoteDecidedPlace(candidates.front().pose, scan.odometry);
         // The objects decided: the filter is held to the places explaining as many of them as
         // the best (the laser fits look-alike places alike, and where the mapping run left the
         // robot's corner unseen, a look-alike's walls better).

@@ -216,9 +216,11 @@ class Localizer {
   bool NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry,
                    int hidden_objects = 0);
   // semantic-amcl: whether the filter sits on a look-alike place that 'candidates' (decided)
-  // rule out: they put the robot elsewhere and explain more of the objects seen.
+  // rule out: they put the robot elsewhere and explain relocate_margin more of the objects
+  // seen, or more of them where no pre-localization decided on the filter's place.
   bool LockedOnLookAlike(const StampedScan& scan, const std::vector<ObservedObject>& observed,
                          const std::vector<PoseCandidate>& candidates) const;
+  void NoteDecidedPlace(const Pose2& pose, const Pose2& odometry);
   void NoteTurn(const StampedScan& scan);
   bool FullTurn() const;
   std::optional<RelocalizationResult> Relocalize(const StampedScan& scan,
@@ -249,6 +251,15 @@ class Localizer {
   // The latest pre-localization did not decide between look-alike places (DecisionGate).
   bool undecided_ = false;
   DecisionGate decision_gate_;
+  // A pose and the odometry when it held; At() carries it to a later odometry.
+  struct Sighting {
+    Pose2 pose;
+    Pose2 odometry;
+    Pose2 At(const Pose2& later) const { return pose * odometry.Between(later); }
+  };
+  // semantic-amcl: the places pre-localizations decided on within the observation memory's
+  // horizon (NoteDecidedPlace), each as last decided.
+  std::vector<Sighting> decided_places_;
   // The latest pre-localization and the odometry when it was made.
   std::optional<std::vector<PoseHypothesis>> prior_;
   Pose2 prior_odometry_;
