@@ -1,5 +1,10 @@
 #include "localization/decision_gate.h"
 
+#include <algorithm>
+#include <iterator>
+
+#include "core/angles.h"
+
 namespace semchain::localization {
 
 bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Pose2& odometry,
@@ -41,12 +46,28 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
   const bool at_leader =
       leader_ &&
       !prelocalizer_.DistinctPlaces(leader_->pose * leader_->odometry.Between(odometry), best.pose);
+  std::vector<int> objects;
+  for (const auto& [observed, id] : best.matches) objects.push_back(id);
+  std::sort(objects.begin(), objects.end());
   if (at_leader) {
-    const int count = leader_->count + 1;
-    leader_ = Leader{best.pose, odometry, explained, best.laser_score, count};
+    std::vector<int> seen;
+    std::set_union(objects.begin(), objects.end(), leader_->objects.begin(), leader_->objects.end(),
+                   std::back_inserter(seen));
+    const bool new_object = seen.size() > leader_->objects.size();
+    const bool new_view = std::abs(NormalizeAngle(odometry.theta - leader_->counted_heading)) >=
+                          options_.confirmation_turn;
+    const bool counts = new_object || new_view;
+    leader_ = Leader{best.pose,
+                     odometry,
+                     explained,
+                     best.laser_score,
+                     leader_->count + (counts ? 1 : 0),
+                     std::move(seen),
+                     counts ? odometry.theta : leader_->counted_heading};
   } else if (!leader_ || explained > leader_->explained ||
              (explained == leader_->explained && best.laser_score > leader_->laser_score)) {
-    leader_ = Leader{best.pose, odometry, explained, best.laser_score, 1};
+    leader_ = Leader{best.pose, odometry,           explained,     best.laser_score,
+                     1,         std::move(objects), odometry.theta};
   } else {
     // A lone place the objects and the laser support less than the leader: a frame that left
     // the leader out (its pair placed too far off), not evidence against it.

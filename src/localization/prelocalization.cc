@@ -713,9 +713,12 @@ bool PreLocalizer::Decided(const std::vector<PoseCandidate>& candidates) const {
   if (candidates.empty()) return false;
   const PoseCandidate& best = candidates.front();
   return std::none_of(candidates.begin() + 1, candidates.end(), [&](const PoseCandidate& c) {
-    return c.agreeing >= best.agreeing &&
-           c.laser_score >= best.laser_score - options_.look_alike_laser_margin &&
-           DistinctPlaces(c.pose, best.pose);
+    const bool tie = c.agreeing >= best.agreeing &&
+                     c.laser_score >= best.laser_score - options_.look_alike_laser_margin;
+    const bool laser_disagrees =
+        c.agreeing + 1 >= best.agreeing &&
+        c.laser_score > best.laser_score + options_.look_alike_laser_margin;
+    return (tie || laser_disagrees) && DistinctPlaces(c.pose, best.pose);
   });
 }
 

@@ -283,6 +283,18 @@ TEST(PreLocalizerTest, LookAlikePlacesLeaveItUndecidedUntilAnObjectTellsThemApar
   EXPECT_FALSE(localizer.Decided({here, beside}));
   beside.pose = Pose2(truth.x, truth.y, truth.theta + 0.4);
   EXPECT_FALSE(localizer.Decided({here, beside}));
+  // A place elsewhere explaining one object fewer does not stand in the way, unless the laser
+  // fits it better by more than the margin: then the objects and the laser disagree.
+  here.laser_score = 0.66;
+  PoseCandidate elsewhere = here;
+  elsewhere.pose = Pose2(truth.x - 3.0, truth.y, truth.theta);
+  elsewhere.agreeing = 1;
+  elsewhere.laser_score = 0.9;
+  EXPECT_TRUE(localizer.Decided({here, elsewhere}));
+  elsewhere.laser_score = 0.997;
+  EXPECT_FALSE(localizer.Decided({here, elsewhere}));
+  elsewhere.agreeing = 0;
+  EXPECT_TRUE(localizer.Decided({here, elsewhere}));
 }
 
 TEST(ObserveObjectsTest, BoxesCutOffByTheImageSidesAreNotUsed) {
