@@ -59,6 +59,22 @@ void FeedTrial(const eval::RelocRunInputs& inputs, Localizer* localizer) {
   for (const StampedScan& scan : inputs.scans) localizer->AddScan(scan);
 }
 
+// The benchmark's success: the localizer's pose within 0.25 m and 10° of 'truth'.
+void ExpectAtTruth(const Localizer& localizer, const Pose2& truth) {
+  ASSERT_TRUE(localizer.pose().has_value());
+  const Pose2 pose = *localizer.pose();
+  EXPECT_LE((pose.translation() - truth.translation()).norm(), 0.25);
+  EXPECT_LE(std::abs(NormalizeAngle(pose.theta - truth.theta)), 0.1745);
+}
+
+// The particles start at 'look_alike' as a converged filter would be, then the trial is fed.
+void FeedTrialFrom(const Pose2& look_alike, const eval::RelocRunInputs& inputs,
+                   Localizer* localizer) {
+  localizer->SetInitialPose(look_alike,
+                            Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
+  FeedTrial(inputs, localizer);
+}
+
 class LocalizerTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { LoadWorldAndMaps("two_similar_rooms.yaml", &world_, &map_); }
@@ -194,6 +210,17 @@ class LookAlikeOfficesTest : public ::testing::Test {
     delete world_;
   }
 
+  // A benchmark trial (two turns in place, then up to 1 m ahead) from 'start'.
+  static eval::RelocTrialRun SimulateTrial(const Pose2& start, int seed, const std::string& tag) {
+    const fs::path work =
+        fs::temp_directory_path() / ("semchain_" + tag + "_" + std::to_string(::getpid()));
+    Result<eval::RelocTrialRun> trial =
+        eval::SimulateRelocTrial(*world_, start, seed, eval::RelocBenchmarkOptions(), work);
+    fs::remove_all(work);
+    EXPECT_TRUE(trial.ok()) << trial.status().message();
+    return trial.ok() ? std::move(*trial) : eval::RelocTrialRun();
+  }
+
   static sim::World* world_;
   static localization::LocalizerMap* map_;
 };
@@ -205,13 +232,9 @@ TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart)
   // A benchmark trial start (office_floor, seed 1, trial 6): the first objects in view are a
   // pair that office S1, 6 m west, has in the same places.
   const Pose2 start(17.18, 4.42, -2.16);
-  const fs::path work =
-      fs::temp_directory_path() / ("semchain_lookalike_offices_" + std::to_string(::getpid()));
-  eval::RelocBenchmarkOptions options;  // two turns in place, then up to 1 m ahead
-  Result<eval::RelocTrialRun> trial = eval::SimulateRelocTrial(*world_, start, 1007, options, work);
-  fs::remove_all(work);
-  ASSERT_TRUE(trial.ok()) << trial.status().message();
-  const eval::RelocRunInputs& inputs = trial->inputs;
+  const eval::RelocTrialRun trial = SimulateTrial(start, 1007, "lookalike_offices");
+  ASSERT_FALSE(trial.truth.empty());
+  const eval::RelocRunInputs& inputs = trial.inputs;
 
   Localizer localizer(*map_, LocalizationMethod::kSemanticScanMatch,
                       localization::LocalizerOptions());
@@ -228,7 +251,7 @@ TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart)
       // The hypotheses kept lie at different places, and the truth is among them.
       ASSERT_GE(hypotheses.size(), 2u);
       const auto near_truth = [&](const localization::PoseHypothesis& h) {
-        return (h.pose.translation() - trial->truth[i].pose.translation()).norm() < 0.5;
+        return (h.pose.translation() - trial.truth[i].pose.translation()).norm() < 0.5;
       };
       EXPECT_TRUE(std::any_of(hypotheses.begin(), hypotheses.end(), near_truth)) << "scan " << i;
       EXPECT_FALSE(std::all_of(hypotheses.begin(), hypotheses.end(), near_truth)) << "scan " << i;
@@ -242,7 +265,7 @@ TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart)
     if (first_lock && localizer.pose()) {
       worst_after_lock =
           std::max(worst_after_lock,
-                   (localizer.pose()->translation() - trial->truth[i].pose.translation()).norm());
+                   (localizer.pose()->translation() - trial.truth[i].pose.translation()).norm());
     }
   }
   EXPECT_TRUE(waited_on_look_alikes);
@@ -251,13 +274,10 @@ TEST_F(LookAlikeOfficesTest, ScanMatcherWaitsUntilTheObjectsTellTheOfficesApart)
   // The first lock is already the right office, and the robot stays in it to the end: the
   // nearest look-alike office is 6 m away. (The lock re-check may still re-anchor tracking within
   // the office: here it moves a pose that drifted 0.3 m to one explaining more of the objects.)
-  EXPECT_LE((pose_at_lock.translation() - trial->truth[*first_lock].pose.translation()).norm(),
+  EXPECT_LE((pose_at_lock.translation() - trial.truth[*first_lock].pose.translation()).norm(),
             0.25);
   EXPECT_LT(worst_after_lock, 1.0);
-  ASSERT_TRUE(localizer.pose().has_value());
-  const Pose2 at_end = *localizer.pose();
-  EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
-  EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
+  ExpectAtTruth(localizer, trial.truth.back().pose);
 }
 
 TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRuleItOut) {
@@ -268,23 +288,13 @@ TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRule
   // again. (A benchmark trial start, office_floor seed 1 trial 2, where the filter once settled
   // in the look-alike office by itself; the pre-localization no longer lets it.)
   const Pose2 start(14.87, 5.42, -1.35);
-  const fs::path work =
-      fs::temp_directory_path() / ("semchain_lookalike_amcl_" + std::to_string(::getpid()));
-  eval::RelocBenchmarkOptions options;
-  Result<eval::RelocTrialRun> trial = eval::SimulateRelocTrial(*world_, start, 1003, options, work);
-  fs::remove_all(work);
-  ASSERT_TRUE(trial.ok()) << trial.status().message();
-  const eval::RelocRunInputs& inputs = trial->inputs;
+  const eval::RelocTrialRun trial = SimulateTrial(start, 1003, "lookalike_amcl");
+  ASSERT_FALSE(trial.truth.empty());
+  const eval::RelocRunInputs& inputs = trial.inputs;
   Localizer localizer(*map_, LocalizationMethod::kSemanticAmcl, localization::LocalizerOptions());
-  const Pose2 look_alike(start.x + 6.0, start.y, start.theta);
-  localizer.SetInitialPose(look_alike,
-                           Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
-  FeedTrial(inputs, &localizer);
+  FeedTrialFrom(Pose2(start.x + 6.0, start.y, start.theta), inputs, &localizer);
   EXPECT_GE(localizer.statistics().lock_corrections, 1);
-  ASSERT_TRUE(localizer.pose().has_value());
-  const Pose2 at_end = *localizer.pose();
-  EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
-  EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
+  ExpectAtTruth(localizer, trial.truth.back().pose);
   EXPECT_EQ(localizer.state(), LocalizerState::kTracking);
 }
 
@@ -296,28 +306,19 @@ TEST_F(LookAlikeOfficesTest, FilterAtAnUndecidedPlaceFollowsADecisionExplainingO
   // office_floor seed 14 trial 31). No pre-localization decides on N4, so the first decision on
   // S2 moves them; a filter at a place some decision named would need two objects more.
   const Pose2 start(14.6, 2.4, -0.4);
-  const fs::path work =
-      fs::temp_directory_path() / ("semchain_lookalike_undecided_" + std::to_string(::getpid()));
-  eval::RelocBenchmarkOptions options;
-  Result<eval::RelocTrialRun> trial = eval::SimulateRelocTrial(*world_, start, 1011, options, work);
-  fs::remove_all(work);
-  ASSERT_TRUE(trial.ok()) << trial.status().message();
-  eval::RelocRunInputs inputs = trial->inputs;
+  const eval::RelocTrialRun trial = SimulateTrial(start, 1011, "lookalike_undecided");
+  ASSERT_FALSE(trial.truth.empty());
+  eval::RelocRunInputs inputs = trial.inputs;
   for (eval::RelocFrame& frame : inputs.frames) {
     std::erase_if(frame.detections, [](const Detection& d) {
       return d.class_name != "computer" && d.class_name != "sofa";
     });
   }
   Localizer localizer(*map_, LocalizationMethod::kSemanticAmcl, localization::LocalizerOptions());
-  const Pose2 look_alike(42.0 - start.x, 14.0 - start.y, NormalizeAngle(start.theta + M_PI));
-  localizer.SetInitialPose(look_alike,
-                           Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
-  FeedTrial(inputs, &localizer);
+  FeedTrialFrom(Pose2(42.0 - start.x, 14.0 - start.y, NormalizeAngle(start.theta + M_PI)), inputs,
+                &localizer);
   EXPECT_GE(localizer.statistics().lock_corrections, 1);
-  ASSERT_TRUE(localizer.pose().has_value());
-  const Pose2 at_end = *localizer.pose();
-  EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
-  EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
+  ExpectAtTruth(localizer, trial.truth.back().pose);
 }
 
 // Seed 000 Table 5's case, where only a hidden object tells two places apart: occluded_corridor's
@@ -409,10 +410,7 @@ TEST_F(HiddenObjectTest, TheHiddenCabinetPlacesTheRobotInItsBay) {
                         localization::LocalizerOptions());
     FeedTrial(trial->inputs, &localizer);
     EXPECT_GT(localizer.statistics().hidden_object_prelocalizations, 0);
-    ASSERT_TRUE(localizer.pose().has_value());
-    const Pose2 at_end = *localizer.pose();
-    EXPECT_LE((at_end.translation() - trial->truth.back().pose.translation()).norm(), 0.25);
-    EXPECT_LE(std::abs(NormalizeAngle(at_end.theta - trial->truth.back().pose.theta)), 0.1745);
+    ExpectAtTruth(localizer, trial->truth.back().pose);
   }
 }
 
