@@ -83,6 +83,7 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
                          {"crossovers", s.crossovers},
                          {"mutations", s.mutations},
                          {"unmatched_updates", s.unmatched},
+                         {"recoveries", s.recoveries},
                          {"mean_effective_sample_size", s.mean_effective_sample_size},
                          {"mean_alpha", s.mean_alpha},
                          {"every_scan", options.every_scan.method},

@@ -26,13 +26,18 @@ bool ProposalOptions::Validate(std::string* error) const {
     *error = "min_matched_points must be >= 0 and the minimum sigmas positive";
     return false;
   }
+  if (!(recovery_window_meters >= 0.0 && recovery_window_radians > 0.0)) {
+    *error = "recovery_window_meters must be >= 0 and recovery_window_radians positive";
+    return false;
+  }
   return heading_search.Validate(error) && mode_refinement.Validate(error);
 }
 
 ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoints& points,
                                     const MotionModel& motion, const Pose2& previous,
                                     const MotionStep& step, const HillClimbingOptions& matcher,
-                                    const ProposalOptions& options, Rng& rng) {
+                                    const ProposalOptions& options, Rng& rng,
+                                    const Pose2* match_start) {
   ProposalEvaluation evaluation;
   const Pose2 prediction = MotionModel::Predict(previous, step.increment);
   evaluation.mode = prediction;
@@ -40,8 +45,9 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
   double window_xy = 3.0 * motion_sigmas.x();
   double window_theta = 3.0 * motion_sigmas.z();
   if (options.use_scan_matching) {
-    const Pose2 start =
-        options.match_from_motion_sample ? motion.Sample(previous, step, rng) : prediction;
+    const Pose2 start = match_start != nullptr             ? *match_start
+                        : options.match_from_motion_sample ? motion.Sample(previous, step, rng)
+                                                           : prediction;
     const MatchResult match = MatchWithHeadingSearch(field, points, start, matcher,
                                                      options.heading_search, motion_sigmas.z());
     evaluation.matched = match.evaluation.matched >= options.min_matched_points;

@@ -44,6 +44,15 @@ struct ProposalOptions {
   // A match with fewer endpoints on obstacles is not trusted: the proposal then centres on the
   // odometry prediction and samples a window as wide as the motion noise.
   int min_matched_points = 30;
+  // When no particle's match is trusted — the whole filter lost the scan: a loop closing beyond
+  // hill climbing's reach, a turn whose wheel odometry stalled — each particle's match starts
+  // instead from the best pose of a correlative search around its prediction, ±3σ of the motion
+  // noise capped at these (0: off). ACES on wheel odometry (issue 21): every failing seed lost
+  // all its particles' matches at the central crossing of corridors, where it closes a loop.
+  // Searched per particle only in those steps: a search on every untrusted particle's match
+  // found trusted but wrong matches along ACES's corridors (stop 34).
+  double recovery_window_meters = 0.0;
+  double recovery_window_radians = 0.4;
   // Floors on the fitted Gaussian's standard deviations.
   double min_sigma_meters = 0.002;
   double min_sigma_radians = 0.001;
@@ -70,7 +79,8 @@ struct ProposalEvaluation {
 ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoints& points,
                                     const MotionModel& motion, const Pose2& previous,
                                     const MotionStep& step, const HillClimbingOptions& matcher,
-                                    const ProposalOptions& options, Rng& rng);
+                                    const ProposalOptions& options, Rng& rng,
+                                    const Pose2* match_start = nullptr);
 
 // The Gaussian fitted to the samples weighted by p(z | ·)^a p(· | x_{t-1}, u)^b.
 struct GaussianFit {

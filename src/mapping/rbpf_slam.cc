@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "core/check.h"
+#include "mapping/correlative_scan_matcher.h"
 #include "mapping/parallel_for.h"
 #include "mapping/ray_casting.h"
 #include "mapping/resampling.h"
@@ -89,7 +90,8 @@ bool RbpfSlam::AddScan(const StampedScan& scan, int index) {
                               ? MotionStep{increment, pending_motion_.covariance}
                               : motion_.Step(increment);
   pending_motion_ = MotionStep{};
-  Propose(SelectMatchPoints(prepared, options_.match_max_range_meters, options_.match_beam_step),
+  Propose(prepared,
+          SelectMatchPoints(prepared, options_.match_max_range_meters, options_.match_beam_step),
           step);
   Resample();
   UpdateMaps(prepared, index);
@@ -130,7 +132,8 @@ void RbpfSlam::Initialize(const PreparedScan& scan, const Pose2& odometry, int i
   ++statistics_.processed;
 }
 
-void RbpfSlam::Propose(const MatchPoints& points, const MotionStep& step) {
+void RbpfSlam::Propose(const PreparedScan& scan, const MatchPoints& points,
+                       const MotionStep& step) {
   const int n = static_cast<int>(particles_.size());
   std::vector<ProposalEvaluation> evaluations(particles_.size());
   std::vector<DominantModel> votes(particles_.size(), DominantModel::kObservation);
@@ -140,10 +143,33 @@ void RbpfSlam::Propose(const MatchPoints& points, const MotionStep& step) {
     const LikelihoodField field(*particle.map, options_.field);
     evaluations[i] = EvaluateProposal(field, points, motion_, particle.pose, step, options_.matcher,
                                       options_.proposal, rngs_[i]);
-    if (options_.annealing.enabled) {
+  });
+  const bool none_matched = std::none_of(evaluations.begin(), evaluations.end(),
+                                         [](const ProposalEvaluation& e) { return e.matched; });
+  // No particle trusted its match: the whole filter lost the scan, and its matches start again
+  // from a wider search (ProposalOptions::recovery_window_meters).
+  if (none_matched && options_.proposal.recovery_window_meters > 0.0) {
+    CorrelativeSearchOptions search;
+    search.linear_window_meters = std::min(options_.proposal.recovery_window_meters,
+                                           3.0 * motion_sigmas.head<2>().maxCoeff());
+    search.angular_window_radians =
+        std::min(options_.proposal.recovery_window_radians, 3.0 * motion_sigmas.z());
+    ++statistics_.recoveries;
+    ParallelFor(n, threads_, [&](int i) {
+      const Particle& particle = particles_[i];
+      const LikelihoodField field(*particle.map, options_.field);
+      const Pose2 prediction = MotionModel::Predict(particle.pose, step.increment);
+      const MatchResult found =
+          CorrelativeSearch(field, scan, prediction, search, options_.match_max_range_meters);
+      evaluations[i] = EvaluateProposal(field, points, motion_, particle.pose, step,
+                                        options_.matcher, options_.proposal, rngs_[i], &found.pose);
+    });
+  }
+  if (options_.annealing.enabled) {
+    for (int i = 0; i < n; ++i) {
       votes[i] = ClassifyStep(options_.annealing, evaluations[i], options_.proposal, motion_sigmas);
     }
-  });
+  }
   // Seed 003 eq. 6: exponents 1 - α (observation) and α (motion); plain GMapping: 1 and 1.
   double observation_exponent = 1.0, motion_exponent = 1.0;
   if (options_.annealing.enabled) {

@@ -61,7 +61,8 @@ struct RbpfStatistics {
   int genetic_resamplings = 0;  // genetic operations instead of resampling
   int crossovers = 0;
   int mutations = 0;
-  int unmatched = 0;  // particle updates whose scan match was not trusted
+  int unmatched = 0;   // particle updates whose scan match was not trusted
+  int recoveries = 0;  // steps where no particle matched and a wider search was run
   double mean_effective_sample_size = 0.0;
   double mean_alpha = 0.0;  // over processed scans, with annealing
 };
@@ -96,7 +97,7 @@ class RbpfSlam {
 
  private:
   void Initialize(const PreparedScan& scan, const Pose2& odometry, int index);
-  void Propose(const MatchPoints& points, const MotionStep& step);
+  void Propose(const PreparedScan& scan, const MatchPoints& points, const MotionStep& step);
   void Resample();
   void UpdateMaps(const PreparedScan& scan, int index);
 

@@ -212,6 +212,31 @@ TEST(RbpfSlamTest, WheelOdometryThatStallsOnATurnIsCorrectedByTheScans) {
   }
 }
 
+// TurnWithStalledOdometry without the heading sweep (config/slam-gmapping.yaml has none): no
+// particle's hill climbing reaches the heading, every match is untrusted, and the proposal falls
+// back on the motion model. The recovery search around each prediction (ACES's loop closure at
+// its central crossing, issue 21) finds the scan's heading.
+TEST(RbpfSlamTest, WhenNoParticleMatchesARecoverySearchFindsTheScan) {
+  std::vector<Pose2> truth;
+  const std::vector<StampedScan> scans = TurnWithStalledOdometry(&truth);
+  auto heading_error = [&](double recovery_window, int* recoveries) {
+    RbpfOptions options = SmallFilter(8);
+    options.angular_update_radians = 0.5;
+    options.motion = {0.1, 0.1, 0.2, 0.2};  // config/slam-gmapping.yaml
+    options.proposal.recovery_window_meters = recovery_window;
+    RbpfSlam slam(options);
+    for (std::size_t i = 0; i < scans.size(); ++i) slam.AddScan(scans[i], static_cast<int>(i));
+    *recoveries = slam.statistics().recoveries;
+    const TrajectoryNode* last = slam.BestParticle().trajectory.get();
+    return std::abs(AngleDifference(last->pose.theta, truth[last->scan_index].theta));
+  };
+  int recoveries = 0;
+  EXPECT_GT(heading_error(0.0, &recoveries), DegToRad(3.0));
+  EXPECT_EQ(recoveries, 0);
+  EXPECT_LT(heading_error(1.0, &recoveries), DegToRad(1.0));
+  EXPECT_GE(recoveries, 1);
+}
+
 // Where the scans constrain nothing (here: no returns at all) the proposal is the motion model,
 // so the particles spread as it says. Driving 1 m in ten 0.1 m readings, GMapping's per-reading
 // noise gives σ_θ = 0.2 · 0.1 · √10 = 0.063 rad, √10 times less than the 0.2 rad of one draw

@@ -107,6 +107,8 @@ Status ReadFilterSections(const yaml::Node& root, RbpfOptions* o) {
                    {"sample_window_radians", &p.sample_window_radians},
                    {"observation_gain", &p.observation_gain},
                    {"min_matched_points", &p.min_matched_points},
+                   {"recovery_window_meters", &p.recovery_window_meters},
+                   {"recovery_window_radians", &p.recovery_window_radians},
                    {"min_sigma_meters", &p.min_sigma_meters},
                    {"min_sigma_radians", &p.min_sigma_radians}},
                   {{"mode_refinement", RefinementFields(&p.mode_refinement)},

@@ -23,6 +23,10 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
                    defaults.rbpf.field.likelihood_sigma_meters);
   EXPECT_DOUBLE_EQ(loaded.rbpf.proposal.sample_window_radians,
                    defaults.rbpf.proposal.sample_window_radians);
+  EXPECT_DOUBLE_EQ(loaded.rbpf.proposal.recovery_window_meters,
+                   defaults.rbpf.proposal.recovery_window_meters);
+  EXPECT_DOUBLE_EQ(loaded.rbpf.proposal.recovery_window_radians,
+                   defaults.rbpf.proposal.recovery_window_radians);
   EXPECT_DOUBLE_EQ(loaded.rbpf.genetic.beta, defaults.rbpf.genetic.beta);
   EXPECT_EQ(loaded.every_scan.refinement.iterations, defaults.every_scan.refinement.iterations);
   EXPECT_EQ(loaded.laser_odometry.scans_per_submap, defaults.laser_odometry.scans_per_submap);
@@ -85,6 +89,7 @@ TEST(SlamOptionsIoTest, EveryShippedSlamConfigLoads) {
   SlamOptions gmapping;
   ASSERT_TRUE(LoadSlamOptions(kConfigDir / "slam-gmapping.yaml", &gmapping).ok());
   EXPECT_FALSE(gmapping.laser_odometry.enabled);
+  EXPECT_DOUBLE_EQ(gmapping.rbpf.proposal.recovery_window_meters, 1.0);
   SlamOptions campus;
   ASSERT_TRUE(LoadSlamOptions(kConfigDir / "slam-campus.yaml", &campus).ok());
   EXPECT_TRUE(campus.pose_graph);
@@ -114,6 +119,11 @@ TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
   status = ReadSlamOptions(*root, &options);
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("pose_graph.min_score"), std::string::npos) << status.message();
+  root = yaml::Node::LoadString("proposal: {recovery_window_meters: -1}\n", "g.yaml");
+  options = SlamOptions();
+  status = ReadSlamOptions(*root, &options);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("recovery_window_meters"), std::string::npos) << status.message();
   root = yaml::Node::LoadString("pose_graph: {enabled: true, windw: 3}\n", "f.yaml");
   options = SlamOptions();
   status = ReadSlamOptions(*root, &options);
