@@ -57,17 +57,22 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
     const bool new_view = std::abs(NormalizeAngle(odometry.theta - leader_->counted_heading)) >=
                           options_.confirmation_turn;
     const bool counts = new_object || new_view;
-    leader_ = Leader{best.pose,
-                     odometry,
-                     explained,
-                     best.laser_score,
-                     leader_->count + (counts ? 1 : 0),
-                     std::move(seen),
-                     counts ? odometry.theta : leader_->counted_heading};
+    leader_ = Leader{.pose = best.pose,
+                     .odometry = odometry,
+                     .explained = explained,
+                     .laser_score = best.laser_score,
+                     .count = leader_->count + (counts ? 1 : 0),
+                     .objects = std::move(seen),
+                     .counted_heading = counts ? odometry.theta : leader_->counted_heading};
   } else if (!leader_ || explained > leader_->explained ||
              (explained == leader_->explained && best.laser_score > leader_->laser_score)) {
-    leader_ = Leader{best.pose, odometry,           explained,     best.laser_score,
-                     1,         std::move(objects), odometry.theta};
+    leader_ = Leader{.pose = best.pose,
+                     .odometry = odometry,
+                     .explained = explained,
+                     .laser_score = best.laser_score,
+                     .count = 1,
+                     .objects = std::move(objects),
+                     .counted_heading = odometry.theta};
   } else {
     // A lone place the objects and the laser support less than the leader: a frame that left
     // the leader out (its pair placed too far off), not evidence against it.
