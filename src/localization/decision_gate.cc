@@ -14,7 +14,7 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
     return (then.translation() - odometry.translation()).norm() > options_.forget_after_travel;
   };
   if (tie_ && forgotten(tie_->second)) tie_.reset();
-  if (poor_fit_ && forgotten(poor_fit_->odometry)) poor_fit_.reset();
+  if (poor_fit_ && forgotten(poor_fit_->place.odometry)) poor_fit_.reset();
   // No hypothesis: no pair of the objects seen fitted anywhere; nothing for or against.
   if (candidates.empty()) return false;
   const PoseCandidate& best = candidates.front();
@@ -32,20 +32,18 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
     // place is wrong or placed too far off for the laser to reach it. Either way it decides
     // nothing, and no place elsewhere explaining fewer objects may be decided over it.
     if (!poor_fit_ || explained >= poor_fit_->explained) {
-      poor_fit_ = PoorFit{best.pose, odometry, explained};
+      poor_fit_ = PoorFit{{best.pose, odometry}, explained};
     }
     return false;
   }
   if (tie_ && explained <= tie_->first) return false;
   if (poor_fit_ && explained < poor_fit_->explained &&
-      prelocalizer_.DistinctPlaces(poor_fit_->pose * poor_fit_->odometry.Between(odometry),
-                                   best.pose)) {
+      prelocalizer_.DistinctPlaces(poor_fit_->place.At(odometry), best.pose)) {
     return false;
   }
   // The leader's place carried by odometry to where this pre-localization was made.
   const bool at_leader =
-      leader_ &&
-      !prelocalizer_.DistinctPlaces(leader_->pose * leader_->odometry.Between(odometry), best.pose);
+      leader_ && !prelocalizer_.DistinctPlaces(leader_->place.At(odometry), best.pose);
   std::vector<int> objects;
   for (const auto& [observed, id] : best.matches) objects.push_back(id);
   std::sort(objects.begin(), objects.end());
@@ -57,8 +55,7 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
     const bool new_view = std::abs(NormalizeAngle(odometry.theta - leader_->counted_heading)) >=
                           options_.confirmation_turn;
     const bool counts = new_object || new_view;
-    leader_ = Leader{.pose = best.pose,
-                     .odometry = odometry,
+    leader_ = Leader{.place = {best.pose, odometry},
                      .explained = explained,
                      .laser_score = best.laser_score,
                      .count = leader_->count + (counts ? 1 : 0),
@@ -66,8 +63,7 @@ bool DecisionGate::Update(const std::vector<PoseCandidate>& candidates, const Po
                      .counted_heading = counts ? odometry.theta : leader_->counted_heading};
   } else if (!leader_ || explained > leader_->explained ||
              (explained == leader_->explained && best.laser_score > leader_->laser_score)) {
-    leader_ = Leader{.pose = best.pose,
-                     .odometry = odometry,
+    leader_ = Leader{.place = {best.pose, odometry},
                      .explained = explained,
                      .laser_score = best.laser_score,
                      .count = 1,

@@ -6,6 +6,7 @@
 
 #include "core/pose2.h"
 #include "localization/prelocalization.h"
+#include "localization/sighting.h"
 
 // When a pre-localization may decide between look-alike places (issue 22's "not sure yet").
 // PreLocalizer::Decided judges one pre-localization: the best hypothesis stands out among those
@@ -66,8 +67,7 @@ class DecisionGate {
   // The place the latest pre-localizations decided on: its pose and the odometry then, what
   // supported it, and how many times it was decided.
   struct Leader {
-    Pose2 pose;
-    Pose2 odometry;
+    Sighting place;
     int explained = 0;
     double laser_score = 0.0;
     int count = 0;
@@ -80,8 +80,7 @@ class DecisionGate {
   // The place explaining the most objects that stood out with a poor laser fit, the odometry
   // then, and how many objects it explained.
   struct PoorFit {
-    Pose2 pose;
-    Pose2 odometry;
+    Sighting place;
     int explained = 0;
   };
   std::optional<PoorFit> poor_fit_;

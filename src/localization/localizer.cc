@@ -167,8 +167,7 @@ void Localizer::SetInitialPose(const Pose2& pose, const Eigen::Matrix3d& covaria
   }
   amcl_.InitializePose(pose, SampleableCovariance(covariance));
   seeded_ = true;
-  filter_pose_ = pose;
-  filter_odometry_ = odometry;
+  filter_ = Sighting{pose, odometry};
   estimate_ = pose;
 }
 
@@ -181,7 +180,7 @@ void Localizer::RelocalizeGlobally() {
   hypotheses_.clear();
   amcl_.ClearPosePrior();
   estimate_.reset();
-  filter_pose_.reset();
+  filter_.reset();
   seeded_ = false;
   undecided_ = false;
   decision_gate_.Reset();
@@ -274,9 +273,9 @@ bool Localizer::NoteDecided(const std::vector<PoseCandidate>& candidates, const 
 bool Localizer::LockedOnLookAlike(const StampedScan& scan,
                                   const std::vector<ObservedObject>& observed,
                                   const std::vector<PoseCandidate>& candidates) const {
-  if (!filter_pose_ || candidates.empty()) return false;
+  if (!filter_ || candidates.empty()) return false;
   // The filter's pose now (its last update moved on by odometry), as the objects were seen.
-  const Pose2 now = *filter_pose_ * filter_odometry_.Between(scan.odometry);
+  const Pose2 now = filter_->At(scan.odometry);
   const PoseCandidate& best = candidates.front();
   if (!map_.prelocalizer.DistinctPlaces(best.pose, now)) return false;
   const int explained_now = map_.prelocalizer.Agreeing(observed, now);
@@ -424,7 +423,7 @@ int Localizer::StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* f
       prior_odometry_ = scan.odometry;
       if (!seeded_ || amcl_.FailureDetected() || relocate) {
         amcl_.InitializeFromHypotheses(*prior_);
-        filter_pose_.reset();
+        filter_.reset();
         seeded_ = true;
       } else {
         // Once seeded, the prior only has to keep the filter in the right place; a looser one
@@ -471,8 +470,7 @@ int Localizer::StepScanMatcher(const StampedScan& scan, const LocalizerFrame* fr
 void Localizer::StartTracking(const Pose2& odometry, const Pose2& pose) {
   amcl_.InitializePose(pose, kTrackingCovariance);
   tracking_ = true;
-  filter_pose_ = pose;
-  filter_odometry_ = odometry;
+  filter_ = Sighting{pose, odometry};
   estimate_ = pose;
 }
 
@@ -586,11 +584,8 @@ std::optional<RelocalizationResult> Localizer::Relocalize(const StampedScan& sca
 // on by odometry.
 int Localizer::Track(const StampedScan& scan) {
   const bool updated = amcl_.ProcessScan(scan.scan, scan.odometry, scan.LaserOffset());
-  if (updated || !filter_pose_) {
-    filter_pose_ = amcl_.Estimate().pose;
-    filter_odometry_ = scan.odometry;
-  }
-  estimate_ = *filter_pose_ * filter_odometry_.Between(scan.odometry);
+  if (updated || !filter_) filter_ = Sighting{amcl_.Estimate().pose, scan.odometry};
+  estimate_ = filter_->At(scan.odometry);
   return updated ? 1 : 0;
 }
 

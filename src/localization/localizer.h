@@ -20,6 +20,7 @@
 #include "localization/observation_memory.h"
 #include "localization/prelocalization.h"
 #include "localization/scan_match_relocalizer.h"
+#include "localization/sighting.h"
 #include "mapping/map_io.h"
 #include "semantic/semantic_map.h"
 #include "sensors/camera.h"
@@ -237,9 +238,8 @@ class Localizer {
   // An initial pose given before the first scan, applied at its odometry.
   std::optional<std::pair<Pose2, Eigen::Matrix3d>> pending_initial_pose_;
   std::optional<Pose2> estimate_;
-  std::optional<Pose2> filter_pose_;  // the filter's pose at its last update
-  Pose2 filter_odometry_;             // odometry at that update
-  bool seeded_ = false;               // semantic-amcl: the particles came from hypotheses
+  std::optional<Sighting> filter_;  // the filter's pose at its last update, and the odometry then
+  bool seeded_ = false;             // semantic-amcl: the particles came from hypotheses
   std::optional<Pose2> start_odometry_;
   double last_heading_ = 0.0;
   double turned_ = 0.0;  // radians turned (odometry) before a scan matcher found the robot
@@ -251,12 +251,6 @@ class Localizer {
   // The latest pre-localization did not decide between look-alike places (DecisionGate).
   bool undecided_ = false;
   DecisionGate decision_gate_;
-  // A pose and the odometry when it held; At() carries it to a later odometry.
-  struct Sighting {
-    Pose2 pose;
-    Pose2 odometry;
-    Pose2 At(const Pose2& later) const { return pose * odometry.Between(later); }
-  };
   // semantic-amcl: the places pre-localizations decided on within the observation memory's
   // horizon (NoteDecidedPlace), each as last decided.
   std::vector<Sighting> decided_places_;
