@@ -184,6 +184,7 @@ void Localizer::RelocalizeGlobally() {
   seeded_ = false;
   undecided_ = false;
   decision_gate_.Reset();
+  decided_places_.clear();
   if (IsScanMatcherMethod(method_)) {
     ResetSearch();
   } else {
