@@ -217,10 +217,12 @@ PreLocalizer::PreLocalizer(const semantic::SemanticMap& map, const mapping::MapI
     const cv::Mat free = mapping::MapCellMask(occupancy, mapping::CellState::kFree);
     cv::distanceTransform(free, clearance_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
     clearance_ *= occupancy.resolution;
-    cv::Mat not_free;
-    cv::bitwise_not(free, not_free);
-    cv::distanceTransform(not_free, to_free_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-    to_free_ *= occupancy.resolution;
+    if (options_.unknown_reach > 0.0) {  // only Standable reads it, and only then
+      cv::Mat not_free;
+      cv::bitwise_not(free, not_free);
+      cv::distanceTransform(not_free, to_free_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+      to_free_ *= occupancy.resolution;
+    }
   }
 }
 
