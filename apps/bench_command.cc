@@ -274,9 +274,10 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
   md << "\n## Every run\n\n";
   if (relations) {
     md << "| log | config | particles | variant | seed | trans (m) mean ± std | rot (deg) mean ± "
-          "std | wall (s) | peak RSS (MB) | resamplings / genetic | loop closures found / "
+          "std | wall (s) | peak RSS (MB) | resamplings / genetic | recoveries | loop closures "
+          "found / "
           "accepted / rejected / gated | optimizer (s) |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   } else {
     md << "| log | config | particles | variant | seed | ATE RMSE (m) | ATE RMSE aligned (m) | "
           "ATE max (m) | rot RMSE (deg) | wall (s) | peak RSS (MB) | loop closures found / "
@@ -301,7 +302,8 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
     }
     md << Fixed(run["wall_s"], 1) << " | " << Fixed(run["peak_rss_mb"], 0);
     if (relations) {
-      md << " | " << run.value("resamplings", 0) << " / " << run.value("genetic_resamplings", 0);
+      md << " | " << run.value("resamplings", 0) << " / " << run.value("genetic_resamplings", 0)
+         << " | " << run.value("recoveries", 0);
     }
     md << " | ";
     if (run.contains("pose_graph")) {
@@ -349,8 +351,9 @@ nlohmann::json RunOne(const BenchSlamArgs& args, const Reference& reference, con
   const Result<std::string> stats = ReadFile(dir / "slam.json");
   if (stats.ok()) {
     const nlohmann::json s = nlohmann::json::parse(*stats, nullptr, false);
-    for (const char* key_name : {"processed", "resamplings", "genetic_resamplings", "crossovers",
-                                 "mutations", "mean_effective_sample_size", "mean_alpha"}) {
+    for (const char* key_name :
+         {"processed", "resamplings", "genetic_resamplings", "crossovers", "mutations",
+          "mean_effective_sample_size", "mean_alpha", "recoveries", "unmatched_updates"}) {
       if (s.is_object() && s.contains(key_name)) run[key_name] = s[key_name];
     }
     if (s.is_object() && s.contains("pose_graph")) run["pose_graph"] = s["pose_graph"];

@@ -40,6 +40,9 @@ for log in corridor_a corridor_b; do
       { echo "FAIL: no summary row for $log / $cfg over 2 seeds"; cat bench/results.md; exit 1; }
   done
 done
+# Each run reports the filter's recovery searches (steps where no particle's match was trusted).
+recoveries=$(grep -c '"recoveries": [0-9]' bench/results.json)
+[ "$recoveries" -eq 8 ] || { echo "FAIL: $recoveries of 8 runs report recoveries"; exit 1; }
 # The default configuration maps the corridor to within a few centimetres (mean over seeds).
 mean=$(grep "^| corridor_a | default | 2 | plain | 2 | " bench/results.md | cut -d'|' -f7 |
   awk '{print $1}')
