@@ -275,8 +275,7 @@ std::string MarkdownTable(const nlohmann::json& results, bool relations) {
   if (relations) {
     md << "| log | config | particles | variant | seed | trans (m) mean ± std | rot (deg) mean ± "
           "std | wall (s) | peak RSS (MB) | resamplings / genetic | recoveries | loop closures "
-          "found / "
-          "accepted / rejected / gated | optimizer (s) |\n"
+          "found / accepted / rejected / gated | optimizer (s) |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   } else {
     md << "| log | config | particles | variant | seed | ATE RMSE (m) | ATE RMSE aligned (m) | "
