@@ -27,6 +27,7 @@
 #include "core/atomic_file.h"
 #include "eval/ate.h"
 #include "eval/relations.h"
+#include "eval/statistics.h"
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
 #include "mapping/odometry_perturbation.h"
@@ -168,26 +169,6 @@ std::string Fixed(double value, int digits) {
   return buffer;
 }
 
-// Mean and sample standard deviation.
-std::pair<double, double> MeanStd(const std::vector<double>& values) {
-  if (values.empty()) return {0.0, 0.0};
-  double sum = 0.0;
-  for (const double v : values) sum += v;
-  const double mean = sum / static_cast<double>(values.size());
-  double squares = 0.0;
-  for (const double v : values) squares += (v - mean) * (v - mean);
-  const double std =
-      values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
-  return {mean, std};
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 // The error a run is ranked by: the mean translational relation error, or the ATE RMSE.
 double RunError(const nlohmann::json& run, bool relations) {
   return run["metrics"][relations ? "trans_mean_m" : "ate_rmse_m"].get<double>();
@@ -204,7 +185,9 @@ nlohmann::json Summary(const nlohmann::json& runs, bool relations) {
     }
   }
   std::map<std::pair<std::string, std::string>, double> medians;
-  for (const auto& [key, errors] : by_log_config) medians[key] = Median(errors);
+  for (const auto& [key, errors] : by_log_config) {
+    medians[key] = eval::Median(errors).value_or(0.0);
+  }
   nlohmann::json summary = nlohmann::json::array();
   std::map<std::tuple<std::string, std::string, int, std::string>, std::size_t> rows;
   for (const nlohmann::json& run : runs) {
@@ -240,13 +223,15 @@ nlohmann::json Summary(const nlohmann::json& runs, bool relations) {
     }
   }
   for (nlohmann::json& row : summary) {
-    const auto [mean, std] = MeanStd(row["errors"].get<std::vector<double>>());
-    const auto [rot_mean, rot_std] = MeanStd(row["rot_errors"].get<std::vector<double>>());
-    row["error_mean"] = mean;
-    row["error_std"] = std;
-    row["rot_mean"] = rot_mean;
-    row["rot_std"] = rot_std;
-    row["wall_s_mean"] = MeanStd(row["wall_s"].get<std::vector<double>>()).first;
+    const eval::MeanStd error =
+        eval::ComputeSampleMeanStd(row["errors"].get<std::vector<double>>());
+    const eval::MeanStd rot =
+        eval::ComputeSampleMeanStd(row["rot_errors"].get<std::vector<double>>());
+    row["error_mean"] = error.mean;
+    row["error_std"] = error.std;
+    row["rot_mean"] = rot.mean;
+    row["rot_std"] = rot.std;
+    row["wall_s_mean"] = eval::ComputeMeanStd(row["wall_s"].get<std::vector<double>>()).mean;
   }
   return summary;
 }

@@ -7,6 +7,7 @@
 #include "core/angles.h"
 #include "core/check.h"
 #include "core/cpu_time.h"
+#include "eval/statistics.h"
 #include "localization/amcl.h"
 #include "mapping/prepared_scan.h"
 #include "mapping/ray_casting.h"
@@ -203,13 +204,6 @@ std::optional<double> Mean(const std::vector<double>& values) {
   double sum = 0.0;
   for (const double v : values) sum += v;
   return sum / static_cast<double>(values.size());
-}
-
-std::optional<double> Median(std::vector<double> values) {
-  if (values.empty()) return std::nullopt;
-  std::sort(values.begin(), values.end());
-  const std::size_t mid = values.size() / 2;
-  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
 }  // namespace
