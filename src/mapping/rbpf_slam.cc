@@ -147,8 +147,10 @@ void RbpfSlam::Propose(const PreparedScan& scan, const MatchPoints& points,
   const bool none_matched = std::none_of(evaluations.begin(), evaluations.end(),
                                          [](const ProposalEvaluation& e) { return e.matched; });
   // No particle trusted its match: the whole filter lost the scan, and its matches start again
-  // from a wider search (ProposalOptions::recovery_window_meters).
-  if (none_matched && options_.proposal.recovery_window_meters > 0.0) {
+  // from a wider search (ProposalOptions::recovery_window_meters). Without scan matching (the
+  // basic RBPF) no match is ever trusted and there is none to start.
+  if (none_matched && options_.proposal.use_scan_matching &&
+      options_.proposal.recovery_window_meters > 0.0) {
     CorrelativeSearchOptions search;
     search.linear_window_meters = std::min(options_.proposal.recovery_window_meters,
                                            3.0 * motion_sigmas.head<2>().maxCoeff());

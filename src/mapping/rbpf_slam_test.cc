@@ -237,6 +237,22 @@ TEST(RbpfSlamTest, WhenNoParticleMatchesARecoverySearchFindsTheScan) {
   EXPECT_GE(recoveries, 1);
 }
 
+// The basic RBPF (no scan matching) trusts no match in any step; the recovery has no match to
+// start and must not search (it did, in every step, for nothing).
+TEST(RbpfSlamTest, WithoutScanMatchingThereIsNothingToRecover) {
+  std::vector<Pose2> truth;
+  const std::vector<StampedScan> scans = TurnWithStalledOdometry(&truth);
+  RbpfOptions options = SmallFilter(4);
+  options.angular_update_radians = 0.5;
+  options.proposal.use_scan_matching = false;
+  options.proposal.recovery_window_meters = 1.0;
+  RbpfSlam slam(options);
+  for (std::size_t i = 0; i < scans.size(); ++i) slam.AddScan(scans[i], static_cast<int>(i));
+  ASSERT_GE(slam.statistics().processed, 2);
+  EXPECT_EQ(slam.statistics().unmatched, 4 * (slam.statistics().processed - 1));
+  EXPECT_EQ(slam.statistics().recoveries, 0);
+}
+
 // Where the scans constrain nothing (here: no returns at all) the proposal is the motion model,
 // so the particles spread as it says. Driving 1 m in ten 0.1 m readings, GMapping's per-reading
 // noise gives σ_θ = 0.2 · 0.1 · √10 = 0.063 rad, √10 times less than the 0.2 rad of one draw
