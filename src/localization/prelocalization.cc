@@ -385,11 +385,15 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
 
 void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
                                  const std::vector<int>& classes, const Pose2& pose,
-                                 std::vector<Match>* matched, std::vector<Match>* by_centre) const {
+                                 std::vector<Match>* matched, std::vector<Match>* by_centre,
+                                 int needed) const {
   matched->clear();
   if (by_centre != nullptr) by_centre->clear();
   const Eigen::Isometry2d world_from_robot = pose.ToIsometry();
   for (std::size_t k = 0; k < observed.size(); ++k) {
+    if (matched->size() + (observed.size() - k) < static_cast<std::size_t>(std::max(needed, 0))) {
+      return;
+    }
     if (classes[k] < 0) continue;
     const ObservedObject& s = observed[k];
     const Eigen::Vector2d surface = world_from_robot * s.surface;
@@ -603,7 +607,7 @@ void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
       // Only objects whose implied centre agrees steer the alignment: one that agrees by its
       // outline alone implies a centre that is off (that is why it needed the outline).
       Refine(observed, centred, &candidate.pose);
-      MatchAgreeing(observed, classes, candidate.pose, &matched);
+      MatchAgreeing(observed, classes, candidate.pose, &matched, nullptr, min_agreeing);
     }
     candidate.agreeing = static_cast<int>(matched.size());
     if (candidate.agreeing < min_agreeing) continue;  // dropped below
@@ -678,7 +682,7 @@ void PreLocalizer::RefineOneByLaser(const std::vector<ObservedObject>& observed,
     return;
   }
   std::vector<Match> matched;
-  MatchAgreeing(observed, classes, refined, &matched);
+  MatchAgreeing(observed, classes, refined, &matched, nullptr, candidate->agreeing);
   if (static_cast<int>(matched.size()) < candidate->agreeing) return;
   const double score = laser_score(refined);
   if (score < candidate->laser_score) return;

@@ -259,9 +259,12 @@ class PreLocalizer {
   std::vector<PoseCandidate> BestDistinct(std::vector<PoseCandidate> candidates) const;
   // The observed objects a robot at 'pose' explains, each matched to one mapped object.
   // 'by_centre' (may be null): those of them whose implied centre agrees (not only the outline).
+  // With 'needed' > 0 the search stops, 'matched' incomplete, as soon as fewer than 'needed' can
+  // be reached: a caller that drops such a pose need not count the rest (a lock re-check asks
+  // for all but one of a dozen objects, and most pairs' poses miss two at once).
   void MatchAgreeing(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
                      const Pose2& pose, std::vector<Match>* matched,
-                     std::vector<Match>* by_centre = nullptr) const;
+                     std::vector<Match>* by_centre = nullptr, int needed = 0) const;
   // The matches as PoseCandidate::matches names them: (observed index, mapped object id).
   std::vector<std::pair<int, int>> MatchIds(std::span<const Match> matched) const;
   // Poses within merge_distance and merge_heading: one hypothesis.
