@@ -114,6 +114,9 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
       ->check(CLI::Range(0.0, 1.0));
   command->add_flag("!--no-lock-recheck", args->options.method.recheck_lock,
                     "semantic-scanmatch: do not re-check the lock against later frames' objects");
+  command->add_flag("!--recheck-every-frame", args->options.method.recheck_on_new_evidence_only,
+                    "semantic-scanmatch: re-check the lock at every frame, also when nothing new "
+                    "was seen since a re-check that found nothing");
   AddDetectorOptions(command, &args->detector,
                      "the simulator's detection model (the mapping run's and every trial's)");
   command->add_option("--out", args->out, "Output folder (results.json, results.md)")->required();

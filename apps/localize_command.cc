@@ -108,7 +108,8 @@ Status RunLocalize(const LocalizeArgs& args) {
                            {"iterations", trace.iterations.back()},
                            {"prelocalizations", trace.prelocalizations},
                            {"undecided_prelocalizations", trace.undecided_prelocalizations},
-                           {"lock_corrections", trace.lock_corrections}};
+                           {"lock_corrections", trace.lock_corrections},
+                           {"lock_rechecks", trace.lock_rechecks}};
   const auto& last = trace.estimates.back();
   result["localized"] = last.has_value();
   if (last) result["pose"] = {last->x, last->y, last->theta};

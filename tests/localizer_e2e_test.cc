@@ -298,6 +298,30 @@ TEST_F(LookAlikeOfficesTest, FilterOnALookAlikeOfficeMovesWhenTwoMoreObjectsRule
   EXPECT_EQ(localizer.state(), LocalizerState::kTracking);
 }
 
+TEST_F(LookAlikeOfficesTest, ScanMatcherLockOnALookAlikeOfficeIsCorrectedWithoutRepeatedRechecks) {
+  // semantic-scanmatch told it stands in the next office of the row (6 m east: the same walls
+  // and furniture footprints, other classes) tracks there until a lock re-check finds the office
+  // that explains more of the objects seen. Re-checking only when something new was seen since a
+  // re-check that found nothing corrects the lock as re-checking every frame does, with fewer
+  // searches (the turn shows the same objects frame after frame).
+  const Pose2 start(14.87, 5.42, -1.35);
+  const eval::RelocTrialRun trial = SimulateTrial(start, 1003, "lookalike_scanmatch");
+  ASSERT_FALSE(trial.truth.empty());
+  int rechecks[2] = {0, 0};
+  for (const bool new_evidence_only : {false, true}) {
+    localization::LocalizerOptions options;
+    options.recheck_on_new_evidence_only = new_evidence_only;
+    Localizer localizer(*map_, LocalizationMethod::kSemanticScanMatch, options);
+    FeedTrialFrom(Pose2(start.x + 6.0, start.y, start.theta), trial.inputs, &localizer);
+    SCOPED_TRACE(new_evidence_only ? "new evidence only" : "every frame");
+    EXPECT_GE(localizer.statistics().lock_corrections, 1);
+    ExpectAtTruth(localizer, trial.truth.back().pose);
+    rechecks[new_evidence_only ? 1 : 0] = localizer.statistics().lock_rechecks;
+  }
+  EXPECT_GT(rechecks[1], 0);
+  EXPECT_LT(rechecks[1], rechecks[0]);
+}
+
 TEST_F(LookAlikeOfficesTest, FilterAtAnUndecidedPlaceFollowsADecisionExplainingOneMore) {
   // Office N4 is office S2 turned half about (21, 7): both have a computer on the desk and a sofa
   // on the near side wall; on the far side wall S2 has a second sofa, N4 a table. Only computers

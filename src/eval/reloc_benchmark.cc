@@ -542,6 +542,9 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
       record.time_s = outcome.time;
       record.cpu_ms = 1000.0 * outcome.cpu;
       record.search_cpu_ms = 1000.0 * outcome.search_cpu;
+      if (!trace.search_cpu_seconds.empty()) {
+        record.search_cpu_trial_ms = 1000.0 * trace.search_cpu_seconds.back();
+      }
       record.localized = outcome.localized;
       record.error_m = outcome.final_error_m;
       record.error_deg = outcome.final_error_rad * 180.0 / M_PI;
@@ -549,6 +552,7 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
       record.single_object_prelocalizations = trace.single_object_prelocalizations;
       record.undecided_prelocalizations = trace.undecided_prelocalizations;
       record.lock_corrections = trace.lock_corrections;
+      record.lock_rechecks = trace.lock_rechecks;
       if (outcome.prelocalized) {
         record.prelocalization_error =
             Eigen::Vector3d(outcome.prelocalization_error.x(), outcome.prelocalization_error.y(),
@@ -606,6 +610,7 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                       {"time_s", r.time_s},
                       {"cpu_ms", r.cpu_ms},
                       {"search_cpu_ms", r.search_cpu_ms},
+                      {"search_cpu_trial_ms", r.search_cpu_trial_ms},
                       {"localized", r.localized},
                       {"error_m", r.error_m},
                       {"error_deg", r.error_deg},
@@ -613,6 +618,7 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                       {"single_object_prelocalizations", r.single_object_prelocalizations},
                       {"undecided_prelocalizations", r.undecided_prelocalizations},
                       {"lock_corrections", r.lock_corrections},
+                      {"lock_rechecks", r.lock_rechecks},
                       {"prelocalization_error", prelocalization_error},
                       {"prelocalization_error_map", prelocalization_error_map}});
     }

@@ -90,13 +90,17 @@ struct RelocTrialRecord {
   double time_s = 0.0;
   double cpu_ms = 0.0;
   double search_cpu_ms = 0.0;  // the part of it spent searching (scan-matcher methods)
-  bool localized = false;      // an estimate at the end
-  double error_m = 0.0;        // at the end (when localized)
+  // Searching over the whole trial, also after convergence (semantic-scanmatch's lock re-checks
+  // go on while it tracks).
+  double search_cpu_trial_ms = 0.0;
+  bool localized = false;  // an estimate at the end
+  double error_m = 0.0;    // at the end (when localized)
   double error_deg = 0.0;
   int prelocalizations = 0;
   int single_object_prelocalizations = 0;
   int undecided_prelocalizations = 0;
   int lock_corrections = 0;
+  int lock_rechecks = 0;
   // |x|, |y| (m) and |θ| (deg) error of the first pre-localization, when there was one.
   std::optional<Eigen::Vector3d> prelocalization_error;
   // |x|, |y| (m) of it in the map's frame (RelocMethodStats::prelocalization_error_map_x_m).

@@ -96,6 +96,7 @@ RelocTrace RunRelocMethod(localization::LocalizationMethod method,
   trace.hidden_object_prelocalizations = statistics.hidden_object_prelocalizations;
   trace.undecided_prelocalizations = statistics.undecided_prelocalizations;
   trace.lock_corrections = statistics.lock_corrections;
+  trace.lock_rechecks = statistics.lock_rechecks;
   return trace;
 }
 

@@ -51,6 +51,7 @@ struct RelocTrace {
   int hidden_object_prelocalizations = 0;  // ... from a hidden object's neighbours (BoW)
   int undecided_prelocalizations = 0;      // ... leaving look-alike places (nothing locked)
   int lock_corrections = 0;                // moves to a place explaining more objects
+  int lock_rechecks = 0;                   // lock re-checks searched (semantic-scanmatch)
   // With RelocRunInputs::record_particles_every > 0, in time order: the first filter update,
   // the one at prelocalization_scan or the first after it, every n-th, and the last. Scan
   // matchers have no particles before they found the robot (AMCL tracks from there).

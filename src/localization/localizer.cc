@@ -471,6 +471,7 @@ int Localizer::StepScanMatcher(const StampedScan& scan, const LocalizerFrame* fr
 void Localizer::StartTracking(const Pose2& odometry, const Pose2& pose) {
   amcl_.InitializePose(pose, kTrackingCovariance);
   tracking_ = true;
+  fruitless_recheck_.reset();
   filter_ = Sighting{pose, odometry};
   estimate_ = pose;
 }
@@ -489,28 +490,61 @@ bool Localizer::RecheckLock(const StampedScan& scan, const LocalizerFrame& frame
   // before the laser rates them.
   const int explained = map_.prelocalizer.Agreeing(observed, *estimate_);
   if (explained >= static_cast<int>(observed.size())) return false;  // none can explain more
+  if (options_.recheck_on_new_evidence_only && RecheckedAlready(scan, observed, explained)) {
+    return false;
+  }
+  ++statistics_.lock_rechecks;
+  const auto found_nothing = [&] {
+    FruitlessRecheck& memo = fruitless_recheck_.emplace();
+    for (const ObservedObject& o : observed) {
+      memo.objects.emplace_back(o.class_name, scan.odometry.ToIsometry() * o.surface);
+    }
+    memo.map_from_odometry = *estimate_ * scan.odometry.Inverse();
+    memo.explained = explained;
+    return false;
+  };
   const std::vector<PoseCandidate> candidates = PreLocalize(scan, observed, explained + 1);
   std::vector<PoseCandidate> better;
   for (const PoseCandidate& c : candidates) {
     if (map_.prelocalizer.DistinctPlaces(c.pose, *estimate_)) better.push_back(c);
   }
-  if (better.empty()) return false;
+  if (better.empty()) return found_nothing();
   RelocalizationResult result;
   if (better.front().agreeing >= explained + options_.relocate_margin) {
     // Look-alikes among the places that explain more: the objects that tell them apart are
     // still to come.
-    if (!map_.prelocalizer.Decided(better)) return false;
+    if (!map_.prelocalizer.Decided(better)) return found_nothing();
     result = map_.matcher.Relocalize(ScanPoints(scan), ToHypotheses(better));
-    if (!result.success) return false;
+    if (!result.success) return found_nothing();
   } else {
     std::vector<PoseHypothesis> priors = ToHypotheses(better);
     priors.insert(priors.begin(), {*estimate_, kTrackingCovariance, 1.0});
     result = map_.matcher.Relocalize(ScanPoints(scan), priors);
-    if (!result.success || result.hypothesis == 0) return false;
+    if (!result.success || result.hypothesis == 0) return found_nothing();
   }
   StartTracking(scan.odometry, result.pose);
   ++statistics_.lock_corrections;
   return true;
+}
+
+bool Localizer::RecheckedAlready(const StampedScan& scan,
+                                 const std::vector<ObservedObject>& observed, int explained) const {
+  if (!fruitless_recheck_ || fruitless_recheck_->explained != explained) return false;
+  const Pose2 shift =
+      fruitless_recheck_->map_from_odometry.Inverse() * (*estimate_ * scan.odometry.Inverse());
+  if (shift.translation().norm() > options_.recheck_pose_shift ||
+      std::abs(NormalizeAngle(shift.theta)) > options_.recheck_pose_turn) {
+    return false;
+  }
+  const Eigen::Isometry2d odometry_from_robot = scan.odometry.ToIsometry();
+  const double same = options_.memory.same_object_distance;
+  return std::all_of(observed.begin(), observed.end(), [&](const ObservedObject& o) {
+    const Eigen::Vector2d at = odometry_from_robot * o.surface;
+    return std::any_of(fruitless_recheck_->objects.begin(), fruitless_recheck_->objects.end(),
+                       [&](const auto& seen) {
+                         return seen.first == o.class_name && (seen.second - at).norm() < same;
+                       });
+  });
 }
 
 // Adds the turn since the last scan to what the robot turned while lost.

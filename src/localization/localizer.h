@@ -104,6 +104,15 @@ struct LocalizerOptions {
   // that explains more of the objects seen than the tracked one is searched beside it, and the
   // scan matcher's better match is kept (a look-alike pair can lock the robot in the wrong place).
   bool recheck_lock = true;
+  // A re-check that found nothing is not repeated until the evidence changes: an object seen that
+  // the last one did not have (none within the memory's same_object_distance, odometry frame),
+  // the tracked pose explaining a different count, or the tracking moving the pose against the
+  // odometry by recheck_pose_shift / recheck_pose_turn. Re-checking the same objects frame after
+  // frame was most of semantic-scanmatch's search CPU on the office floor (issue 22). False:
+  // every frame re-checks.
+  bool recheck_on_new_evidence_only = true;
+  double recheck_pose_shift = 0.1;
+  double recheck_pose_turn = 0.05;
   // A pose the method stands by (a scan matcher's lock, a converged filter) is moved to another
   // place on the objects' word alone when that place explains at least this many more of the
   // objects seen during the turn (the laser fits look-alike places alike, and one object more
@@ -153,6 +162,7 @@ struct LocalizerStatistics {
   // method kept the hypotheses and locked onto none.
   int undecided_prelocalizations = 0;
   int lock_corrections = 0;  // tracked poses moved to a place that explains more objects
+  int lock_rechecks = 0;     // lock re-checks searched (semantic-scanmatch)
 };
 
 class Localizer {
@@ -213,6 +223,10 @@ class Localizer {
   int StepScanMatcher(const StampedScan& scan, const LocalizerFrame* frame);
   void StartTracking(const Pose2& odometry, const Pose2& pose);
   bool RecheckLock(const StampedScan& scan, const LocalizerFrame& frame);
+  // Whether the last re-check that found nothing saw what 'observed' shows, at the same tracked
+  // pose and count (recheck_on_new_evidence_only).
+  bool RecheckedAlready(const StampedScan& scan, const std::vector<ObservedObject>& observed,
+                        int explained) const;
   // Notes whether 'candidates' decide between look-alike places; returns it.
   bool NoteDecided(const std::vector<PoseCandidate>& candidates, const Pose2& odometry,
                    int hidden_objects = 0);
@@ -247,6 +261,14 @@ class Localizer {
   // ScanPoints of the scan being processed (a cache, hence mutable).
   mutable std::optional<std::vector<Eigen::Vector2d>> scan_points_;
   ObservationMemory memory_;
+  // The last lock re-check that found nothing: the objects it saw (class, odometry frame), the
+  // tracked pose in the odometry frame (map_from_odometry) and the count that pose explained.
+  struct FruitlessRecheck {
+    std::vector<std::pair<std::string, Eigen::Vector2d>> objects;
+    Pose2 map_from_odometry;
+    int explained = 0;
+  };
+  std::optional<FruitlessRecheck> fruitless_recheck_;
   bool single_object_tried_ = false;
   // The latest pre-localization did not decide between look-alike places (DecisionGate).
   bool undecided_ = false;

@@ -100,6 +100,8 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "single_object", &p.localizer.single_object));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "recheck_lock", &p.localizer.recheck_lock));
   SEMCHAIN_RETURN_IF_ERROR(
+      Read(nh, "recheck_on_new_evidence_only", &p.localizer.recheck_on_new_evidence_only));
+  SEMCHAIN_RETURN_IF_ERROR(
       ReadDouble(nh, "decision_min_laser_score", &p.localizer.decision_min_laser_score));
   if (!(p.localizer.decision_min_laser_score >= 0.0 &&
         p.localizer.decision_min_laser_score <= 1.0)) {
