@@ -496,9 +496,9 @@ bool Localizer::RecheckLock(const StampedScan& scan, const LocalizerFrame& frame
   ++statistics_.lock_rechecks;
   const auto found_nothing = [&] {
     FruitlessRecheck& memo = fruitless_recheck_.emplace();
-    for (const ObservedObject& o : observed) {
-      memo.objects.emplace_back(o.class_name, scan.odometry.ToIsometry() * o.surface);
-    }
+    const Eigen::Isometry2d odometry_from_robot = scan.odometry.ToIsometry();
+    memo.objects = observed;
+    for (ObservedObject& o : memo.objects) o.surface = odometry_from_robot * o.surface;
     memo.map_from_odometry = *estimate_ * scan.odometry.Inverse();
     memo.explained = explained;
     return false;
@@ -537,12 +537,12 @@ bool Localizer::RecheckedAlready(const StampedScan& scan,
     return false;
   }
   const Eigen::Isometry2d odometry_from_robot = scan.odometry.ToIsometry();
-  const double same = options_.memory.same_object_distance;
   return std::all_of(observed.begin(), observed.end(), [&](const ObservedObject& o) {
-    const Eigen::Vector2d at = odometry_from_robot * o.surface;
+    ObservedObject at = o;
+    at.surface = odometry_from_robot * o.surface;
     return std::any_of(fruitless_recheck_->objects.begin(), fruitless_recheck_->objects.end(),
-                       [&](const auto& seen) {
-                         return seen.first == o.class_name && (seen.second - at).norm() < same;
+                       [&](const ObservedObject& seen) {
+                         return SameObject(seen, at, options_.memory.same_object_distance);
                        });
   });
 }

@@ -261,10 +261,11 @@ class Localizer {
   // ScanPoints of the scan being processed (a cache, hence mutable).
   mutable std::optional<std::vector<Eigen::Vector2d>> scan_points_;
   ObservationMemory memory_;
-  // The last lock re-check that found nothing: the objects it saw (class, odometry frame), the
-  // tracked pose in the odometry frame (map_from_odometry) and the count that pose explained.
+  // The last lock re-check that found nothing: the objects it saw (surfaces in the odometry
+  // frame), the tracked pose in the odometry frame (map_from_odometry) and the count that pose
+  // explained.
   struct FruitlessRecheck {
-    std::vector<std::pair<std::string, Eigen::Vector2d>> objects;
+    std::vector<ObservedObject> objects;
     Pose2 map_from_odometry;
     int explained = 0;
   };

@@ -15,6 +15,10 @@ bool ObservationMemoryOptions::Validate(std::string* error) const {
   return true;
 }
 
+bool SameObject(const ObservedObject& a, const ObservedObject& b, double distance) {
+  return a.class_name == b.class_name && (a.surface - b.surface).norm() < distance;
+}
+
 ObservationMemory::ObservationMemory(const ObservationMemoryOptions& options) : options_(options) {
   std::string error;
   SEMCHAIN_CHECK(options_.Validate(&error));
@@ -56,8 +60,7 @@ std::vector<ObservedObject> ObservationMemory::Recall(const Pose2& odometry) con
       moved.frames_ago = static_cast<int>(frames_.size()) - 1 - k;
       bool seen_later = false;
       for (std::size_t i = 0; i < newer && !seen_later; ++i) {
-        seen_later = recalled[i].class_name == moved.class_name &&
-                     (recalled[i].surface - moved.surface).norm() < options_.same_object_distance;
+        seen_later = SameObject(recalled[i], moved, options_.same_object_distance);
       }
       if (!seen_later) recalled.push_back(moved);
     }

@@ -26,6 +26,9 @@ struct ObservationMemoryOptions {
   bool Validate(std::string* error) const;
 };
 
+// Whether two sightings, in one frame, are of one object: the same class within 'distance'.
+bool SameObject(const ObservedObject& a, const ObservedObject& b, double distance);
+
 class ObservationMemory {
  public:
   explicit ObservationMemory(const ObservationMemoryOptions& options = {});

@@ -390,10 +390,9 @@ void PreLocalizer::MatchAgreeing(const std::vector<ObservedObject>& observed,
   matched->clear();
   if (by_centre != nullptr) by_centre->clear();
   const Eigen::Isometry2d world_from_robot = pose.ToIsometry();
+  const auto at_least = static_cast<std::size_t>(std::max(needed, 0));
   for (std::size_t k = 0; k < observed.size(); ++k) {
-    if (matched->size() + (observed.size() - k) < static_cast<std::size_t>(std::max(needed, 0))) {
-      return;
-    }
+    if (matched->size() + (observed.size() - k) < at_least) return;
     if (classes[k] < 0) continue;
     const ObservedObject& s = observed[k];
     const Eigen::Vector2d surface = world_from_robot * s.surface;
