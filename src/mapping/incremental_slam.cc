@@ -8,6 +8,7 @@
 
 #include "core/angles.h"
 #include "core/check.h"
+#include "core/release_memory.h"
 #include "mapping/parallel_for.h"
 #include "mapping/ray_casting.h"
 
@@ -282,7 +283,10 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
   // map of the optimized trajectory is built below. The filter is not needed after this.
   OccupancyGrid filter_map;
   if (!options_.pose_graph) filter_map = *slam_.BestParticle().map;
-  if (release_filter) release_filter();
+  if (release_filter) {
+    release_filter();
+    ReleaseFreeMemory();
+  }
   if (loop_closer_) {
     result.loop_closure = loop_closer_->statistics();
     result.loop_closure.follows = follows_;

@@ -111,9 +111,10 @@ struct Submap {
   bool finished = false;
   // Once finished: the grid's image (the match grid is built from it) and, cell by cell over its
   // extent, whether the grid observed the cell (the image's unknown also covers observed cells
-  // of middling probability); image_min is its first cell in the grid's indices.
+  // of middling probability; a bit a cell: MIT Killian's masks took 50 MB as bytes);
+  // image_min is its first cell in the grid's indices.
   MapImage image;
-  std::vector<std::uint8_t> observed;
+  std::vector<bool> observed;
   Eigen::Vector2i image_min = Eigen::Vector2i::Zero();
   // Once finished: the match grid's centre and the radius of its extent around it (metres)...
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
@@ -162,7 +163,7 @@ bool Observed(const Submap& submap, const Eigen::Vector2d& point) {
       cell.y() >= submap.image.height) {
     return false;
   }
-  return submap.observed[static_cast<std::size_t>(cell.y() * submap.image.width + cell.x())] != 0;
+  return submap.observed[static_cast<std::size_t>(cell.y() * submap.image.width + cell.x())];
 }
 
 void Finish(Submap* submap, const LoopClosureOptions& options) {
@@ -172,12 +173,12 @@ void Finish(Submap* submap, const LoopClosureOptions& options) {
       (submap->image.origin.head<2>() - grid.origin()) / grid.resolution();
   submap->image_min = Eigen::Vector2i(static_cast<int>(std::lround(offset.x())),
                                       static_cast<int>(std::lround(offset.y())));
-  submap->observed.assign(submap->image.cells.size(), 0);
+  submap->observed.assign(submap->image.cells.size(), false);
   for (int y = 0; y < submap->image.height; ++y) {
     for (int x = 0; x < submap->image.width; ++x) {
       const GridCell* cell = grid.Find(submap->image_min + Eigen::Vector2i(x, y));
       submap->observed[static_cast<std::size_t>(y * submap->image.width + x)] =
-          cell != nullptr && cell->Known() ? 1 : 0;
+          cell != nullptr && cell->Known();
     }
   }
   submap->grid = OccupancyGrid(grid.options(), grid.origin());
