@@ -216,28 +216,23 @@ void Acquire(Submap* wanted, const Submap* keep, std::uint64_t tick, std::vector
 // one per query_cell_meters cell. Down a corridor one scan sees few of the features that tell
 // places apart (a 180° laser mostly sees the walls beside it); a short stretch of the local map
 // sees each several times.
-MatchPoints QueryPoints(const std::vector<PreparedScan>& scans, const std::vector<Pose2>& estimate,
-                        const std::vector<double>& travel, std::size_t i,
-                        const LoopClosureOptions& options) {
-  MatchPoints own =
-      SelectMatchPoints(scans[i], options.match_max_range_meters, options.match_beam_step);
-  if (options.query_travel_meters <= 0.0) return own;
-  MatchPoints query;
+std::vector<Eigen::Vector2d> QueryPoints(
+    const std::vector<std::vector<Eigen::Vector2d>>& node_points,
+    const std::vector<Pose2>& estimate, const std::vector<double>& travel, std::size_t i,
+    const LoopClosureOptions& options) {
+  if (options.query_travel_meters <= 0.0) return node_points[i];
+  std::vector<Eigen::Vector2d> query;
   std::unordered_set<std::int64_t> cells;
   const double per_cell = 1.0 / options.query_cell_meters;
   const auto add = [&](const Eigen::Vector2d& point) {
     const auto cx = static_cast<std::int64_t>(std::floor(point.x() * per_cell));
     const auto cy = static_cast<std::int64_t>(std::floor(point.y() * per_cell));
-    if (cells.insert((cx << 32) ^ (cy & 0xffffffff)).second) query.points.push_back(point);
+    if (cells.insert((cx << 32) ^ (cy & 0xffffffff)).second) query.push_back(point);
   };
-  for (const Eigen::Vector2d& point : own.points) add(point);
+  for (const Eigen::Vector2d& point : node_points[i]) add(point);
   for (std::size_t j = i; j-- > 0 && travel[i] - travel[j] <= options.query_travel_meters;) {
     const Eigen::Isometry2d to_node = estimate[i].Between(estimate[j]).ToIsometry();
-    for (const Eigen::Vector2d& point :
-         SelectMatchPoints(scans[j], options.match_max_range_meters, options.match_beam_step)
-             .points) {
-      add(to_node * point);
-    }
+    for (const Eigen::Vector2d& point : node_points[j]) add(to_node * point);
   }
   return query;
 }
@@ -391,9 +386,11 @@ struct LoopCloser::State {
 
   LoopClosureOptions options;
   LoopClosureStatistics stats;
-  std::vector<PreparedScan> scans;  // the nodes'
-  std::vector<Pose2> poses;         // the filter's, one per node (rebased when the filter follows)
-  std::vector<Pose2> estimate;      // the graph's
+  // The match points of each node's scan (robot frame): all a search needs of it once it is in
+  // its submap (a fifth of the scan's memory).
+  std::vector<std::vector<Eigen::Vector2d>> node_points;
+  std::vector<Pose2> poses;     // the filter's, one per node (rebased when the filter follows)
+  std::vector<Pose2> estimate;  // the graph's
   std::vector<PoseGraphEdge> edges;
   std::vector<double> travel;
   std::vector<Submap> submaps;
@@ -479,7 +476,8 @@ LoopClosureStatistics LoopCloser::statistics() const {
 }
 
 bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
-  scans.push_back(scan);
+  node_points.push_back(
+      SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step).points);
   poses.push_back(pose);
   const std::size_t i = poses.size() - 1;
   const int node = static_cast<int>(i);
@@ -506,11 +504,12 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   }
   Submap& open = submaps.back();
   open.last = node;
-  InsertScan(scans[i], poses[static_cast<std::size_t>(open.first)].Between(poses[i]), &open.grid);
+  InsertScan(scan, poses[static_cast<std::size_t>(open.first)].Between(poses[i]), &open.grid);
 
   if (i % static_cast<std::size_t>(options.search_every_nodes) != 0) return false;
   const auto search_start = std::chrono::steady_clock::now();
-  const MatchPoints points = QueryPoints(scans, estimate, travel, i, options);
+  const std::vector<Eigen::Vector2d> points =
+      QueryPoints(node_points, estimate, travel, i, options);
   if (static_cast<int>(points.size()) < options.min_points) return false;
   bool searched = false;
   Submap* best_submap = nullptr;
@@ -531,7 +530,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     Acquire(&submap, best_submap, ++tick, &submaps, options);
     searched = true;
     const BranchAndBoundResult match =
-        submap.matcher->Match(points.points, window, std::max(options.min_score, best.score));
+        submap.matcher->Match(points, window, std::max(options.min_score, best.score));
     if (match.found && match.score > best.score) {
       best = match;
       best_submap = &submap;
@@ -545,10 +544,9 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   closure.from = best_submap->first;
   closure.to = node;
   closure.relative =
-      RefineWithCeres(*best_submap->match_grid, points.points, best.pose, options.refinement).pose;
+      RefineWithCeres(*best_submap->match_grid, points, best.pose, options.refinement).pose;
   if (options.unknown_is_neutral) {
-    const KnownAgreement agreement =
-        AgreementOnKnownCells(*best_submap, points.points, closure.relative);
+    const KnownAgreement agreement = AgreementOnKnownCells(*best_submap, points, closure.relative);
     if (agreement.fraction < options.min_known_fraction || agreement.score < options.min_score) {
       return false;
     }

@@ -174,7 +174,8 @@ class LoopCloser {
   LoopCloser(LoopCloser&&) noexcept;
   LoopCloser& operator=(LoopCloser&&) noexcept;
 
-  // Adds the next node (the scan is copied); returns true when the graph was optimized.
+  // Adds the next node (its scan goes into the open submap, and its match points are kept for
+  // the searches); returns true when the graph was optimized.
   bool AddNode(const PreparedScan& scan, const Pose2& filter_pose);
   std::size_t size() const;
   // The graph's poses, one per node.
