@@ -300,6 +300,7 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     LoopClosureResult closed = CloseLoops(node_scans, node_poses, options_.loop_closure);
     for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k].second = closed.poses[k];
     result.loop_closure = std::move(closed.statistics);
+    ReleaseFreeMemory();  // the graph's submaps, before the final map is built
   }
   std::vector<Pose2> poses = InterpolatedPoses(scans_, scans_.size(), nodes);
   result.map =
