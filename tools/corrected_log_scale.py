@@ -137,7 +137,10 @@ def main() -> None:
     args = parser.parse_args()
     if args.gap < 1 or args.every < 1:
         sys.exit("--gap and --every must be positive")
-    scans, poses = read_log(args.log)
+    try:
+        scans, poses = read_log(args.log)
+    except (OSError, EOFError, UnicodeDecodeError) as error:
+        sys.exit(f"{args.log}: cannot read: {error}")
     scales = np.linspace(-0.01, 0.01, 21)
     costs, pairs = scale_costs(scans, poses, args.gap, args.every, scales)
     if pairs == 0:
