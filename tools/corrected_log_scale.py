@@ -10,11 +10,10 @@ scans exactly is off by the difference. This tool measures it: for scan pairs (i
 log, the relative pose the log gives is scaled by (1 + s) in translation, scan i + K is placed on
 scan i there, and the point-to-line distance of every return to the other scan's surface
 (normals from neighbouring returns; capped at 0.1 m) is averaged over all pairs. The s that fits
-best is the scale the scans prefer relative to the poses: 0 when the poses are the scans'
-own geometry, negative when the
-poses stretch the scans' geometry. Then it prints the ATE a trajectory at that scale would have
-against the poses (scaled about the first pose, as `bench slam` starts at the true first pose;
-and rigidly aligned), the floor for any SLAM that follows the scans.
+best is the scale the scans prefer relative to the poses: 0 when the poses are the scans' own
+geometry, negative when the poses stretch it. Then it prints the ATE a trajectory at that scale
+would have against the poses (scaled about the first pose, as `bench slam` starts at the true
+first pose; and rigidly aligned), the floor for any SLAM that follows the scans.
 """
 
 from __future__ import annotations
@@ -62,7 +61,9 @@ def read_log(path: str) -> tuple[list[np.ndarray], np.ndarray]:
     return scans, np.array(poses)
 
 
-def scan_points(ranges: np.ndarray, start: float, step: float, max_range: float = 25.0) -> np.ndarray:
+def scan_points(
+    ranges: np.ndarray, start: float, step: float, max_range: float = 25.0
+) -> np.ndarray:
     """Returns within max_range in the laser frame (the laser at the pose; the CARMEN logs of
     shared/data have no laser offset)."""
     angles = start + step * np.arange(len(ranges))
@@ -151,7 +152,10 @@ def main() -> None:
     best = scales[int(costs.argmin())]
     plain, aligned = ate_at_scale(poses, best)
     print(f"best fit: the scans prefer the poses' translations scaled by {1 + best:.3f}")
-    print(f"a trajectory at that scale: ATE {plain:.3f} m from the first pose, {aligned:.3f} m aligned")
+    print(
+        f"a trajectory at that scale: ATE {plain:.3f} m from the first pose, "
+        f"{aligned:.3f} m aligned"
+    )
 
 
 if __name__ == "__main__":
