@@ -131,7 +131,7 @@ Result<BuiltMap> BuildMap(const sim::World& world, const RelocBenchmarkOptions& 
 // runs.json says something else is made anew.
 std::string RunsStamp(const std::string& world_text, const std::string& live_world_text,
                       const RelocBenchmarkOptions& options) {
-  const nlohmann::json stamp = {
+  nlohmann::json stamp = {
       {"format", 1},
       {"world", world_text},
       {"live_world", live_world_text},
@@ -140,6 +140,9 @@ std::string RunsStamp(const std::string& world_text, const std::string& live_wor
       {"trial_turns", options.trial_turns},
       {"trial_forward", options.trial_forward},
       {"detections", options.detect ? options.detections_source : std::string("simulator")}};
+  // Named only when used, so that runs kept before these settings existed stay valid.
+  if (options.trial_face_open) stamp["trial_face_open"] = true;
+  if (options.trial_turns_after != 0.0) stamp["trial_turns_after"] = options.trial_turns_after;
   return stamp.dump(2) + "\n";
 }
 
@@ -268,6 +271,8 @@ Result<RelocTrialRun> SimulateRelocTrial(const sim::World& world, const Pose2& s
   simulation.route.kind = sim::RouteSpec::Kind::kTrial;
   simulation.trial.rotation_radians = 2.0 * M_PI * options.trial_turns;
   simulation.trial.forward_distance_meters = options.trial_forward;
+  simulation.trial.face_most_open = options.trial_face_open;
+  simulation.trial.rotation_after_radians = 2.0 * M_PI * options.trial_turns_after;
   SEMCHAIN_RETURN_IF_ERROR(sim::Simulate(world, simulation, run));
   return LoadRelocTrial(seed, options, run);
 }
@@ -511,6 +516,10 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
   result.detections_source = options.detect ? options.detections_source : "simulator";
   result.trials = options.trials;
   result.seed = options.seed;
+  result.trial_turns = options.trial_turns;
+  result.trial_forward = options.trial_forward;
+  result.trial_face_open = options.trial_face_open;
+  result.trial_turns_after = options.trial_turns_after;
   result.map_objects = static_cast<int>(built->semantic.objects.size());
   result.map_ate_m = built->ate;
   for (int k = 0; k < options.trials; ++k) {
@@ -631,6 +640,11 @@ std::string RelocResultsJson(const RelocBenchmarkResult& result) {
                                {"seed", result.seed},
                                {"map_objects", result.map_objects},
                                {"map_ate_m", result.map_ate_m},
+                               {"trial_protocol",
+                                {{"turns", result.trial_turns},
+                                 {"forward_m", result.trial_forward},
+                                 {"face_open", result.trial_face_open},
+                                 {"turns_after", result.trial_turns_after}}},
                                {"methods", methods},
                                {"runs", runs}};
   return root.dump(2) + "\n";
@@ -643,6 +657,18 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
                      std::to_string(result.map_ate_m) + " m), " +
                      std::to_string(result.map_objects) +
                      " objects; detections: " + result.detections_source + "\n\n";
+  char protocol[256];
+  std::snprintf(protocol, sizeof(protocol),
+                "Trials: %g turns in place, then a drive of at most %g m %s", result.trial_turns,
+                result.trial_forward,
+                result.trial_face_open ? "towards the most open heading" : "straight on");
+  text += protocol;
+  if (result.trial_turns_after > 0.0) {
+    std::snprintf(protocol, sizeof(protocol), ", then %g turns in place there",
+                  result.trial_turns_after);
+    text += protocol;
+  }
+  text += ".\n\n";
   text +=
       "Time, CPU and search CPU: means over the successful trials (until convergence), then "
       "over all trials (a failed trial charged for its whole time, up to the limit). "

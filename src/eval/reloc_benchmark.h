@@ -35,6 +35,11 @@ struct RelocBenchmarkOptions {
   // The trial behaviour: turns in place, then a drive of at most this far.
   double trial_turns = 2.0;
   double trial_forward = 1.0;
+  // Active relocalization (off: the protocol of the README's tables): the drive goes towards the
+  // most open heading, and the robot turns in place this many times where it ended
+  // (sim::TrialOptions::face_most_open, rotation_after_radians).
+  bool trial_face_open = false;
+  double trial_turns_after = 0.0;
   // How the semantic methods use the camera (observation memory, single-object hypotheses).
   localization::LocalizerOptions method;
   // How the objects pre-localize (laser refinement of the hypotheses, look-alike margins, ...).
@@ -115,6 +120,11 @@ struct RelocBenchmarkResult {
   std::uint64_t seed = 0;
   int map_objects = 0;
   double map_ate_m = 0.0;  // SLAM trajectory of the mapping run against its truth
+  // The trial behaviour (RelocBenchmarkOptions::trial_*).
+  double trial_turns = 0.0;
+  double trial_forward = 0.0;
+  bool trial_face_open = false;
+  double trial_turns_after = 0.0;
   std::map<std::string, RelocMethodStats> methods;
   std::map<std::string, std::vector<RelocTrialRecord>> runs;
 };

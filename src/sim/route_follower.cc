@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include "core/angles.h"
@@ -25,18 +26,47 @@ std::string PointName(const std::string& label, const Eigen::Vector2d& p) {
   return label + text;
 }
 
+// The turn from 'pose' to the heading, of 36 around, with the most room ahead (up to
+// 'look_ahead'); the first of equals counter-clockwise from 'pose', so no turn when it has as much.
+double TurnToMostOpen(const Scene& scene, const Pose2& pose, double radius, double clearance,
+                      double look_ahead) {
+  constexpr int kHeadings = 36;
+  double most_room = -1.0;
+  double turn = 0.0;
+  for (int k = 0; k < kHeadings; ++k) {
+    const double candidate = NormalizeAngle(2.0 * std::numbers::pi * k / kHeadings);
+    const double room = FreeDistanceAhead(scene, Pose2(pose.x, pose.y, pose.theta + candidate),
+                                          radius, clearance, look_ahead);
+    if (room > most_room) {
+      most_room = room;
+      turn = candidate;
+    }
+  }
+  return turn;
+}
+
 Result<std::vector<Leg>> PlanLegs(const Scene& scene, const RobotSpec& robot,
                                   const RouteSpec& route, const Pose2& start,
                                   const TrialOptions& trial) {
   std::vector<Leg> legs;
   if (route.kind == RouteSpec::Kind::kTrial) {
     legs.push_back({Leg::Kind::kRotate, {}, trial.rotation_radians, "the trial rotation"});
-    const Pose2 turned(start.x, start.y, start.theta + trial.rotation_radians);
+    Pose2 turned(start.x, start.y, start.theta + trial.rotation_radians);
+    if (trial.face_most_open) {
+      const double turn = TurnToMostOpen(scene, turned, robot.radius, trial.stop_clearance_meters,
+                                         trial.open_look_ahead_meters);
+      if (turn != 0.0) legs.push_back({Leg::Kind::kRotate, {}, turn, "the turn to open space"});
+      turned.theta += turn;
+    }
     const double distance = FreeDistanceAhead(
         scene, turned, robot.radius, trial.stop_clearance_meters, trial.forward_distance_meters);
     const Eigen::Vector2d goal = turned * Eigen::Vector2d(distance, 0.0);
     if (distance > 0.0)
       legs.push_back({Leg::Kind::kGoTo, goal, 0.0, PointName("the trial goal", goal)});
+    if (trial.rotation_after_radians != 0.0) {
+      legs.push_back(
+          {Leg::Kind::kRotate, {}, trial.rotation_after_radians, "the rotation after the drive"});
+    }
     return legs;
   }
   const bool mapping = route.kind == RouteSpec::Kind::kMapping;

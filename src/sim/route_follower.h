@@ -30,6 +30,14 @@ struct TrialOptions {
   double forward_distance_meters = 1.0;  // at most this far
   // Kept between the robot's outline and the first surface ahead (of any height).
   double stop_clearance_meters = 0.15;
+  // A robot that looks for more (active relocalization), off by default: after the turns it
+  // faces the heading with the most room ahead (of 36, room counted up to
+  // open_look_ahead_meters) before it drives, so that a start in a corner drives out into the
+  // room instead of stopping at the wall the turns happened to end facing, ...
+  bool face_most_open = false;
+  double open_look_ahead_meters = 5.0;
+  // ... and turns in place again by this much where the drive ended (0: no second look).
+  double rotation_after_radians = 0.0;
 };
 
 struct TrajectoryOptions {

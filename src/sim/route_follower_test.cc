@@ -102,6 +102,39 @@ TEST(RouteFollowerTest, TrialRotatesOnceThenDrivesAhead) {
   EXPECT_NEAR(end.y, start.y + std::sin(0.4), 0.021);
 }
 
+// A start facing a corner: the plain trial drives into the corner and stops; the active one
+// turns towards the most open heading, drives its full metre out into the room and turns again
+// there.
+TEST(RouteFollowerTest, ActiveTrialLeavesTheCornerAndLooksAgain) {
+  const World world = RouteRoom();
+  const Scene scene(world);
+  RouteSpec trial;
+  trial.kind = RouteSpec::Kind::kTrial;
+  const Pose2 start(0.6, 0.6, -0.75 * kPi);
+  const auto stuck = GenerateTrajectory(scene, world.robot, trial, start);
+  ASSERT_TRUE(stuck.ok()) << stuck.status().message();
+  EXPECT_LT((stuck->back().pose.translation() - start.translation()).norm(), 0.6);
+
+  TrajectoryOptions active;
+  active.trial.face_most_open = true;
+  active.trial.rotation_after_radians = 2 * kPi;
+  const auto samples = GenerateTrajectory(scene, world.robot, trial, start, active);
+  ASSERT_TRUE(samples.ok()) << samples.status().message();
+  const Pose2& end = samples->back().pose;
+  EXPECT_NEAR((end.translation() - start.translation()).norm(), 1.0, 0.021);
+  const double drive_heading = std::atan2(end.y - start.y, end.x - start.x);
+  // Out into the room: still metres of room ahead where the drive ended.
+  EXPECT_GT(FreeDistanceAhead(scene, Pose2(end.x, end.y, drive_heading), world.robot.radius,
+                              active.trial.stop_clearance_meters, 5.0),
+            4.0);
+  double turned = 0.0;
+  for (std::size_t i = 1; i < samples->size(); ++i) {
+    turned += AngleDifference((*samples)[i].pose.theta, (*samples)[i - 1].pose.theta);
+  }
+  // The full turn, the turn towards the open heading, the full turn where the drive ended.
+  EXPECT_NEAR(turned, 4 * kPi + NormalizeAngle(drive_heading - start.theta), 0.05);
+}
+
 TEST(RouteFollowerTest, TrialStopsBeforeAnObstacleAhead) {
   World world = RouteRoom();
   Solid low_box;  // lower than any lidar, still in the way
