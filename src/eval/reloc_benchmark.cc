@@ -657,15 +657,16 @@ std::string RelocResultsMarkdown(const RelocBenchmarkResult& result) {
                      std::to_string(result.map_ate_m) + " m), " +
                      std::to_string(result.map_objects) +
                      " objects; detections: " + result.detections_source + "\n\n";
+  const auto turns = [](double n) { return n == 1.0 ? "turn" : "turns"; };
   char protocol[256];
   std::snprintf(protocol, sizeof(protocol),
-                "Trials: %g turns in place, then a drive of at most %g m %s", result.trial_turns,
-                result.trial_forward,
+                "Trials: %g %s in place, then a drive of at most %g m %s", result.trial_turns,
+                turns(result.trial_turns), result.trial_forward,
                 result.trial_face_open ? "towards the most open heading" : "straight on");
   text += protocol;
   if (result.trial_turns_after > 0.0) {
-    std::snprintf(protocol, sizeof(protocol), ", then %g turns in place there",
-                  result.trial_turns_after);
+    std::snprintf(protocol, sizeof(protocol), ", then %g more %s in place there",
+                  result.trial_turns_after, turns(result.trial_turns_after));
     text += protocol;
   }
   text += ".\n\n";
