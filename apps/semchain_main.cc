@@ -1,8 +1,11 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "apps/command.h"
 
@@ -11,6 +14,26 @@ namespace semchain::app {
 int ReportError(const Status& status) {
   std::fprintf(stderr, "semchain: error: %s\n", status.message().c_str());
   return 1;
+}
+
+// --help and --version end in a ParseError too (exit code 0, CLI11 prints them). A usage error
+// is one line and exit 1, as every other error (README, "The semchain command"), naming the
+// --help to read.
+int ExitOnParseError(const CLI::App& app, const CLI::ParseError& error) {
+  if (error.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(error);
+  std::string message = error.what();
+  // CLI11 checks required options before unexpected ones: 'semchain slam --lgo x' would say
+  // "--log is required", and 'semchain slma' "A subcommand is required", hiding the typo.
+  // (CLI11 2.1 lists what it left over last first.)
+  std::vector<std::string> unexpected = app.remaining(true);
+  std::reverse(unexpected.begin(), unexpected.end());
+  if (!unexpected.empty()) message = CLI::ExtrasError(unexpected).what();
+  std::string command_line = "semchain";
+  for (const CLI::App* command = &app; !command->get_subcommands().empty();) {
+    command = command->get_subcommands().front();
+    command_line += " " + command->get_name();
+  }
+  return ReportError(Status::Error(message + " (see '" + command_line + " --help')"));
 }
 
 }  // namespace semchain::app
@@ -45,7 +68,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    return semchain::app::ExitOnParseError(app, error);
   } catch (const std::exception& error) {
     // A robot's tool never ends in terminate(): whatever escaped a command (out of memory, a
     // library's assertion) is one error line and exit 1.
