@@ -106,6 +106,7 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
                           {"follows", l.follows},
                           {"motion_noise_scale", l.motion_noise_scale},
                           {"search_seconds", l.search_seconds},
+                          {"built_submaps_peak_mb", l.built_submaps_peak_megabytes},
                           {"optimizer_seconds", l.optimizer_seconds},
                           {"residuals", l.residuals}};
   }
@@ -227,9 +228,9 @@ int RunSlamCommand(const SlamArgs& args) {
     spdlog::info(
         "slam: pose graph: {} nodes, {} submaps, loop closures {} found, {} accepted, {} "
         "rejected by the other closures, {} not added (off the motion's prediction); search "
-        "{:.1f} s, optimizer {:.2f} s",
+        "{:.1f} s (submaps built for it: {:.0f} MB at most), optimizer {:.2f} s",
         l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.gated, l.search_seconds,
-        l.optimizer_seconds);
+        l.built_submaps_peak_megabytes, l.optimizer_seconds);
     if (options->loop_closure.online) {
       spdlog::info("slam: pose graph online: the particles followed it {} times", l.follows);
     }

@@ -80,6 +80,8 @@ class BranchAndBoundMatcher {
                                        const SearchWindow& window) const;
 
   const MatchGrid& grid() const { return grid_; }
+  // Memory held by the precomputation grids.
+  std::size_t precomputation_bytes() const { return stack_.bytes(); }
 
  private:
   struct Discretization;

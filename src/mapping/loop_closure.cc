@@ -34,6 +34,10 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "max_built_submaps must be >= 1";
     return false;
   }
+  if (!(max_built_submaps_megabytes > 0.0)) {
+    *error = "max_built_submaps_megabytes must be positive";
+    return false;
+  }
   if (!(window_sigmas > 0.0)) {
     *error = "window_sigmas must be positive";
     return false;
@@ -189,23 +193,37 @@ void Finish(Submap* submap, const LoopClosureOptions& options) {
                    std::hypot(submap->match_grid->width, submap->match_grid->height);
 }
 
+double BuiltMegabytes(const Submap& submap) {
+  const std::size_t bytes =
+      submap.match_grid->values.size() * sizeof(float) + submap.matcher->precomputation_bytes();
+  return static_cast<double>(bytes) / (1024.0 * 1024.0);
+}
+
 // Builds 'wanted' if needed and marks it used at 'tick'; then, while more than
-// options.max_built_submaps finished submaps are built, frees the least recently used one other
-// than 'wanted' and 'keep' (may be null).
-void Acquire(Submap* wanted, const Submap* keep, std::uint64_t tick, std::vector<Submap>* submaps,
-             const LoopClosureOptions& options) {
+// options.max_built_submaps finished submaps are built, or they hold more than
+// options.max_built_submaps_megabytes, frees the least recently used one other than 'wanted' and
+// 'keep' (may be null). Returns the most the built submaps held (once 'wanted' was built).
+double Acquire(Submap* wanted, const Submap* keep, std::uint64_t tick, std::vector<Submap>* submaps,
+               const LoopClosureOptions& options) {
   if (!wanted->matcher) Build(wanted, options);
   wanted->last_used = tick;
+  double most = 0.0;
   while (true) {
     Submap* oldest = nullptr;
     int built = 0;
+    double megabytes = 0.0;
     for (Submap& submap : *submaps) {
       if (!submap.matcher) continue;
       ++built;
+      megabytes += BuiltMegabytes(submap);
       if (&submap == wanted || &submap == keep) continue;
       if (oldest == nullptr || submap.last_used < oldest->last_used) oldest = &submap;
     }
-    if (built <= options.max_built_submaps || oldest == nullptr) return;
+    most = std::max(most, megabytes);
+    if ((built <= options.max_built_submaps && megabytes <= options.max_built_submaps_megabytes) ||
+        oldest == nullptr) {
+      return most;
+    }
     oldest->matcher.reset();
     oldest->match_grid.reset();
   }
@@ -496,7 +514,8 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
                              options.submap_travel_meters) {
     if (!submaps.empty()) {
       Finish(&submaps.back(), options);
-      Acquire(&submaps.back(), nullptr, ++tick, &submaps, options);
+      const double held = Acquire(&submaps.back(), nullptr, ++tick, &submaps, options);
+      stats.built_submaps_peak_megabytes = std::max(stats.built_submaps_peak_megabytes, held);
     }
     submaps.emplace_back();
     submaps.back().first = node;
@@ -527,7 +546,8 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     const double reach = window.linear_window_meters + submap.radius;
     if ((window.center.translation() - submap.center).norm() > reach) continue;
     // The best submap so far stays built: its match grid refines the closure below.
-    Acquire(&submap, best_submap, ++tick, &submaps, options);
+    const double held = Acquire(&submap, best_submap, ++tick, &submaps, options);
+    stats.built_submaps_peak_megabytes = std::max(stats.built_submaps_peak_megabytes, held);
     searched = true;
     const BranchAndBoundResult match =
         submap.matcher->Match(points, window, std::max(options.min_score, best.score));

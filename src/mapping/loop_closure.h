@@ -33,6 +33,13 @@ struct LoopClosureOptions {
   // most recently); the others keep only their occupancy grid and are rebuilt, identically, when
   // a search reaches them again. Bounds the memory of long runs (a campus: ~100 submaps).
   int max_built_submaps = 12;
+  // ...and at most this much memory in them (match grid and precomputation grids; the least
+  // recently searched are freed first, the two in use never). A submap's grids grow with what
+  // its laser saw: twelve of MIT Killian's (corridors) hold 76 MB, twelve of ACES's (open
+  // halls) 148 MB. A cap that frees submaps a search keeps coming back to costs time: ACES with
+  // 64 MB, 341 MB peak RSS instead of 425 MB, but the search took 11.2 s instead of 5.3 s
+  // (README, "Campus logs"). 128 MB bounds larger submaps without slowing these logs.
+  double max_built_submaps_megabytes = 128.0;
   // A submap is searched only from nodes at least this far along the path after its last
   // node (nearer ones are the filter's own business).
   double min_loop_travel_meters = 30.0;
@@ -150,6 +157,7 @@ struct LoopClosureStatistics {
   int follows = 0;  // online: times the particles and their map moved onto the optimized nodes
   double motion_noise_scale = 1.0;  // the motion edges' variance factor at the end
   double search_seconds = 0.0;
+  double built_submaps_peak_megabytes = 0.0;  // the most the built submaps held at once
   double optimizer_seconds = 0.0;
   // Whitened residual norm of each kept closure after the last optimization.
   std::vector<double> residuals;

@@ -128,16 +128,7 @@ TEST(LoopClosureTest, ClosingTheLoopsRemovesTheDrift) {
       << " accepted, " << stats.gated << " gated, " << stats.rejected << " rejected";
 }
 
-// Submaps freed from the cache are rebuilt identically: keeping one built or all of them gives
-// the same closures and the same poses.
-TEST(LoopClosureTest, TheBuiltSubmapCacheDoesNotChangeTheResult) {
-  const LoopRun run = DriveTwoLaps(DegToRad(0.05));
-  LoopClosureOptions one, all;
-  one.max_built_submaps = 1;
-  all.max_built_submaps = 1000;
-  const LoopClosureResult a = CloseLoops(Pointers(run.scans), run.drifted, one);
-  const LoopClosureResult b = CloseLoops(Pointers(run.scans), run.drifted, all);
-  ASSERT_GT(a.statistics.submaps, 2);
+void ExpectSameResult(const LoopClosureResult& a, const LoopClosureResult& b) {
   EXPECT_EQ(a.statistics.found, b.statistics.found);
   EXPECT_EQ(a.statistics.accepted, b.statistics.accepted);
   EXPECT_EQ(a.statistics.residuals, b.statistics.residuals);
@@ -147,6 +138,27 @@ TEST(LoopClosureTest, TheBuiltSubmapCacheDoesNotChangeTheResult) {
     EXPECT_EQ(a.poses[i].y, b.poses[i].y) << i;
     EXPECT_EQ(a.poses[i].theta, b.poses[i].theta) << i;
   }
+}
+
+// Submaps freed from the cache are rebuilt identically: keeping one built, all of them, or as
+// many as a tiny memory budget allows gives the same closures and the same poses.
+TEST(LoopClosureTest, TheBuiltSubmapCacheDoesNotChangeTheResult) {
+  const LoopRun run = DriveTwoLaps(DegToRad(0.05));
+  LoopClosureOptions one, all, tight;
+  one.max_built_submaps = 1;
+  all.max_built_submaps = 1000;
+  all.max_built_submaps_megabytes = 1e6;
+  tight.max_built_submaps_megabytes = 1e-3;
+  const LoopClosureResult a = CloseLoops(Pointers(run.scans), run.drifted, one);
+  const LoopClosureResult b = CloseLoops(Pointers(run.scans), run.drifted, all);
+  const LoopClosureResult c = CloseLoops(Pointers(run.scans), run.drifted, tight);
+  ASSERT_GT(a.statistics.submaps, 2);
+  ExpectSameResult(a, b);
+  ExpectSameResult(c, b);
+  // The budget bounds what is held: with it only the submap searched and the best one so far
+  // stay built.
+  EXPECT_GT(c.statistics.built_submaps_peak_megabytes, 0.0);
+  EXPECT_LT(c.statistics.built_submaps_peak_megabytes, b.statistics.built_submaps_peak_megabytes);
 }
 
 // Closures that land where a drift-free filter predicts (within their own noise) make the

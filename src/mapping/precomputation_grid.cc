@@ -39,4 +39,10 @@ PrecomputationGridStack::PrecomputationGridStack(const MatchGrid& grid, int dept
   for (int h = 0; h <= depth; ++h) grids_.emplace_back(grid, 1 << h);
 }
 
+std::size_t PrecomputationGridStack::bytes() const {
+  std::size_t sum = 0;
+  for (const PrecomputationGrid& grid : grids_) sum += grid.bytes();
+  return sum;
+}
+
 }  // namespace semchain::mapping

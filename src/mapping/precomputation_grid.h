@@ -26,6 +26,7 @@ class PrecomputationGrid {
     if (px < 0 || py < 0 || px >= width_ || py >= height_) return outside_;
     return values_[static_cast<std::size_t>(py * width_ + px)];
   }
+  std::size_t bytes() const { return values_.size(); }
 
  private:
   int offset_;  // cell (x, y) is stored at (x + offset_, y + offset_): blocks may start left of 0
@@ -46,6 +47,7 @@ class PrecomputationGridStack {
     return grids_[static_cast<std::size_t>(height)];
   }
   int max_depth() const { return static_cast<int>(grids_.size()) - 1; }
+  std::size_t bytes() const;
 
  private:
   std::vector<PrecomputationGrid> grids_;

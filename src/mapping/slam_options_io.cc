@@ -171,6 +171,7 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                       {"min_loop_travel_meters", &l.min_loop_travel_meters},
                       {"search_every_nodes", &l.search_every_nodes},
                       {"max_built_submaps", &l.max_built_submaps},
+                      {"max_built_submaps_megabytes", &l.max_built_submaps_megabytes},
                       {"window_sigmas", &l.window_sigmas},
                       {"linear_window_meters", &l.linear_window_meters},
                       {"max_linear_window_meters", &l.max_linear_window_meters},

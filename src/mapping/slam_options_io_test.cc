@@ -43,6 +43,7 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(l.min_loop_travel_meters, d.min_loop_travel_meters);
   EXPECT_EQ(l.search_every_nodes, d.search_every_nodes);
   EXPECT_EQ(l.max_built_submaps, d.max_built_submaps);
+  EXPECT_DOUBLE_EQ(l.max_built_submaps_megabytes, d.max_built_submaps_megabytes);
   EXPECT_DOUBLE_EQ(l.linear_window_meters, d.linear_window_meters);
   EXPECT_DOUBLE_EQ(l.window_sigmas, d.window_sigmas);
   EXPECT_DOUBLE_EQ(l.gate_sigmas, d.gate_sigmas);
