@@ -7,8 +7,8 @@
 # _out:=WORK/live_map (tests/ros/mapping_checker.py: objects on /semchain/objects before the bag
 # ends, then /semchain/save_map). The node must warn about each bad message and keep mapping;
 # the saved semantic.json must match the world (precision and recall >= 0.97,
-# tests/ros/score_semantic.py) with no object of the unknown class, and the saved folder must
-# hold the five images as its keyframes' images ("run": "."), each the image of its own frame.
+# tests/ros/score_semantic.py) with no object of the unknown class, and the saved folder's
+# keyframes (one to five, "run": ".") must each carry its own frame's image, from those five.
 # Then the room A trial bag is localized on that map in the default mode (node_test.sh: the last
 # /amcl_pose within 0.25 m and 10°). One bag play for both: each play is 80 s of a CI run.
 set -euo pipefail
