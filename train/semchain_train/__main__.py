@@ -50,7 +50,7 @@ def _add_train_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--scale", choices=("n", "s"), default="n", help="YOLOv8 scale (default n)")
     parser.add_argument("--gd", action="store_true", help="Gold-YOLO gather-and-distribute neck")
     parser.add_argument("--asf", action="store_true", help="ASF-YOLO attentional scale-sequence fusion")
-    parser.add_argument("--weights", type=Path, help="start from this checkpoint's model instead of a new one")
+    parser.add_argument("--weights", type=Path, help="start from this checkpoint's model (.pt), or from an exported raw-head model (.onnx, with its .names; --scale, --gd, --asf say its architecture)")
     parser.add_argument("--epochs", type=int, default=d.epochs, help=f"default {d.epochs}")
     parser.add_argument("--batch", type=int, default=d.batch, help=f"default {d.batch}")
     parser.add_argument("--input", type=parse_size, default=d.input_size, help="WIDTHxHEIGHT (default 320x256)")
@@ -103,7 +103,9 @@ def _run_train(args: argparse.Namespace) -> int:
         )
         options.validate()
         torch.manual_seed(args.seed)
-        if args.weights is not None:
+        if args.weights is not None and args.weights.suffix == ".onnx":
+            model = _model_from_onnx(args, spec, names)
+        elif args.weights is not None:
             checkpoint = load_checkpoint(args.weights)
             if checkpoint.names != names:
                 raise CommandError(f"{args.weights}: its classes {checkpoint.names} are not {args.data}'s {names}")
@@ -117,6 +119,32 @@ def _run_train(args: argparse.Namespace) -> int:
     best = fit(model, options, names, extra_checkpoint=user_extra)
     print(f"best: {best}")
     return 0
+
+
+def _model_from_onnx(args: argparse.Namespace, spec, names: list[str]):
+    """The Detector an exported raw-head ONNX (e.g. models/detector.onnx) computes, to fine-tune."""
+    import torch
+
+    from semchain_train.data.dataset import split_images
+    from semchain_train.model.config import ModelConfig
+    from semchain_train.onnx_import import OnnxImportError, calibration_images, export_input_size, load_detector_from_onnx
+
+    names_file = args.weights.with_suffix(".names")
+    if not names_file.is_file():
+        raise CommandError(f"{names_file}: missing (the class names of {args.weights})")
+    onnx_names = [line.strip() for line in names_file.read_text().splitlines() if line.strip()]
+    if onnx_names != names:
+        raise CommandError(f"{names_file}: its classes {onnx_names} are not {args.data}'s {names}")
+    try:
+        input_size = export_input_size(args.weights)
+        # Batch-norm statistics from a fixed, seeded sample of the training images.
+        images = split_images(spec, "train")
+        order = torch.randperm(len(images), generator=torch.Generator().manual_seed(args.seed)).tolist()
+        calibration = calibration_images([images[i] for i in order[:64]], input_size)
+        config = ModelConfig(scale=args.scale, classes=len(names), gd_neck=args.gd, asf=args.asf)
+        return load_detector_from_onnx(args.weights, config, calibration)
+    except OnnxImportError as error:
+        raise CommandError(str(error)) from None
 
 
 def _add_val_arguments(parser: argparse.ArgumentParser) -> None:
