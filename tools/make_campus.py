@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes worlds/campus.yaml, the simulated campus of issue 27 (SLAM with loops of hundreds of metres).
+"""Writes worlds/campus.yaml, the simulated campus (SLAM with loops of hundreds of metres).
 
     python3 tools/make_campus.py [OUT.yaml]   (standard library only; default worlds/campus.yaml
                                                 beside this tool)
@@ -114,7 +114,7 @@ def main() -> None:
              (west, middle), (west, south), start]
 
     lines = [
-        "# The simulated campus of issue 27: two loops of 229 m around two buildings (the figure",
+        "# The simulated campus: two loops of 229 m around two buildings (the figure",
         "# 日, 92 m x 52 m, corridors 2.4 m wide), niches at irregular spacing along every wall, a",
         "# SICK-like 180-degree laser of 30 m and wheel odometry with a systematic error. The mapping",
         "# route closes the south loop after 229 m, then the north loop (about 600 m in all).",

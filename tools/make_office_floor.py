@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes worlds/office_floor.yaml, the look-alike office floor of issue 22.
+"""Writes worlds/office_floor.yaml, the look-alike office floor (relocalization at building scale).
 
     python3 tools/make_office_floor.py [OUT.yaml]   (standard library only; default
                                                       worlds/office_floor.yaml beside this tool)
@@ -195,7 +195,7 @@ def trial_region(office: Office) -> list[tuple[float, float]]:
 
 
 HEADER = """\
-# A floor of twelve look-alike offices off one corridor (issue 22: relocalization at building
+# A floor of twelve look-alike offices off one corridor (relocalization at building
 # scale). 36 m x 14 m: a 2 m corridor (y 6-8) with six 6 m x 6 m offices on each side (south row
 # S0-S5, y 0-6, and north row N0-N5, y 8-14, office i spanning x 6i to 6i + 6). Every office is
 # the same office moved rigidly (the south ones also turned by 180 degrees): a 1 m doorway 1.5 m
