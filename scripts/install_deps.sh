@@ -7,6 +7,8 @@ packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libopencv-dev libceres-dev libyaml-cpp-dev nlohmann-json3-dev
   libcli11-dev libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev zlib1g-dev
+  # src/detection reads and rewrites ONNX models (onnx::ModelProto) before OpenCV DNN runs them.
+  libonnx-dev libprotobuf-dev
   clang-format
   # train/: the detector's training package and its tests (Debian's PyTorch 1.13, CPU).
   python3-torch python3-onnx python3-opencv python3-numpy python3-yaml python3-tqdm python3-pytest

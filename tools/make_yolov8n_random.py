@@ -82,11 +82,15 @@ class SPPF(nn.Module):
 
 class RawDetect(nn.Module):
     """YOLOv8's Detect head without the decoding: per level cat(box DFL logits, class logits),
-    flattened and concatenated over the levels."""
+    flattened and concatenated over the levels. 'hidden' (box, class) overrides the widths of the
+    branches' inner convolutions (YOLOv8's own when None)."""
 
-    def __init__(self, nc, channels):
+    def __init__(self, nc, channels, hidden=None):
         super().__init__()
         c2, c3 = max(16, channels[0] // 4, 4 * REG_MAX), max(channels[0], min(nc, 100))
+        if hidden is not None:
+            c2, c3 = hidden
+        self.nc = nc
         self.no = 4 * REG_MAX + nc
         self.cv2 = nn.ModuleList(
             nn.Sequential(Conv(c, c2, 3), Conv(c2, c2, 3), nn.Conv2d(c2, 4 * REG_MAX, 1))
@@ -103,27 +107,38 @@ class RawDetect(nn.Module):
         return torch.cat(outputs, 2)
 
 
+# YOLOv8n's widths (stem, P2, P3, P4, P5) and C2f repeats (P2, P3, P4, P5 backbone blocks).
+YOLOV8N_WIDTHS = (16, 32, 64, 128, 256)
+YOLOV8N_REPEATS = (1, 2, 2, 1)
+
+
 class YoloV8n(nn.Module):
-    def __init__(self, nc=80):
+    """YOLOv8's layer graph; by default at scale n. 'widths', 'repeats' and 'head_hidden' make
+    narrower variants of the same graph (small test models); 'head' builds the Detect head from
+    (nc, channels, hidden)."""
+
+    def __init__(self, nc=80, widths=YOLOV8N_WIDTHS, repeats=YOLOV8N_REPEATS, head_hidden=None,
+                 head=RawDetect):
         super().__init__()
-        self.b0 = Conv(3, 16, 3, 2)
-        self.b1 = Conv(16, 32, 3, 2)
-        self.b2 = C2f(32, 32, 1, True)
-        self.b3 = Conv(32, 64, 3, 2)
-        self.b4 = C2f(64, 64, 2, True)
-        self.b5 = Conv(64, 128, 3, 2)
-        self.b6 = C2f(128, 128, 2, True)
-        self.b7 = Conv(128, 256, 3, 2)
-        self.b8 = C2f(256, 256, 1, True)
-        self.b9 = SPPF(256, 256)
+        w0, w1, w2, w3, w4 = widths
+        self.b0 = Conv(3, w0, 3, 2)
+        self.b1 = Conv(w0, w1, 3, 2)
+        self.b2 = C2f(w1, w1, repeats[0], True)
+        self.b3 = Conv(w1, w2, 3, 2)
+        self.b4 = C2f(w2, w2, repeats[1], True)
+        self.b5 = Conv(w2, w3, 3, 2)
+        self.b6 = C2f(w3, w3, repeats[2], True)
+        self.b7 = Conv(w3, w4, 3, 2)
+        self.b8 = C2f(w4, w4, repeats[3], True)
+        self.b9 = SPPF(w4, w4)
         self.up = nn.Upsample(scale_factor=2.0, mode="nearest")
-        self.h12 = C2f(384, 128, 1, False)
-        self.h15 = C2f(192, 64, 1, False)
-        self.h16 = Conv(64, 64, 3, 2)
-        self.h18 = C2f(192, 128, 1, False)
-        self.h19 = Conv(128, 128, 3, 2)
-        self.h21 = C2f(384, 256, 1, False)
-        self.detect = RawDetect(nc, (64, 128, 256))
+        self.h12 = C2f(w4 + w3, w3, 1, False)
+        self.h15 = C2f(w3 + w2, w2, 1, False)
+        self.h16 = Conv(w2, w2, 3, 2)
+        self.h18 = C2f(w2 + w3, w3, 1, False)
+        self.h19 = Conv(w3, w3, 3, 2)
+        self.h21 = C2f(w3 + w4, w4, 1, False)
+        self.detect = head(nc, (w2, w3, w4), head_hidden)
 
     def forward(self, x):
         p3 = self.b4(self.b3(self.b2(self.b1(self.b0(x)))))
@@ -153,7 +168,7 @@ def init_weights(model):
         nn.init.normal_(box[-1].weight, std=0.01)
         nn.init.normal_(box[-1].bias, mean=1.0, std=0.01)
         nn.init.normal_(cls[-1].weight, std=0.01)
-        nn.init.normal_(cls[-1].bias, mean=math.log(5 / 80 / (640 / stride) ** 2), std=0.01)
+        nn.init.normal_(cls[-1].bias, mean=math.log(5 / head.nc / (640 / stride) ** 2), std=0.01)
 
 
 def main():

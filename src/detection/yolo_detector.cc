@@ -11,6 +11,7 @@
 #include "detection/class_nms.h"
 #include "detection/letterbox.h"
 #include "detection/onnx_graph_check.h"
+#include "detection/onnx_model_prepare.h"
 #include "io/detections_io.h"
 
 namespace semchain::detection {
@@ -38,11 +39,27 @@ std::string OpenCvMessage(const cv::Exception& error) {
   return message;
 }
 
+struct LoadedNet {
+  cv::dnn::Net net;
+  PreparedOnnxModel prepared;  // without its bytes
+};
+
+// What OpenCV's error means for the model as semchain prepared it.
+std::string CannotLoad(const fs::path& model_path, const PreparedOnnxModel& prepared) {
+  if (prepared.head_classes) {
+    return model_path.string() + ": OpenCV DNN cannot load this ONNX model (cut at its raw head)";
+  }
+  return model_path.string() +
+         ": OpenCV DNN cannot load this ONNX model, and its graph has no YOLOv8 raw head to cut "
+         "it at (per stride a Concat of a 64-channel box and an nc-channel class convolution; "
+         "see README)";
+}
+
 // The model's network and the input size to run it at: 'options''s, or the model's own for 0 × 0.
 // A static export asked for another size is tried at that size (a graph in which nothing depends
 // on the size runs at any); 'exported_size' gets the export's size for the error when it does not.
-Result<cv::dnn::Net> ReadNet(const fs::path& model_path, YoloOptions* options,
-                             std::optional<std::pair<int, int>>* exported_size) {
+Result<LoadedNet> ReadNet(const fs::path& model_path, YoloOptions* options,
+                          std::optional<std::pair<int, int>>* exported_size) {
   SEMCHAIN_RETURN_IF_ERROR(CheckModelFile(model_path));
   const Result<std::string> bytes = ReadFile(model_path);
   if (!bytes.ok()) return bytes.status();
@@ -56,21 +73,48 @@ Result<cv::dnn::Net> ReadNet(const fs::path& model_path, YoloOptions* options,
     std::string invalid;
     if (!options->Validate(&invalid)) return Status::Error(model_path.string() + ": " + invalid);
   }
+  Result<PreparedOnnxModel> prepared = PrepareOnnxModel(*bytes, model_path.string());
+  if (!prepared.ok()) return prepared.status();
+  LoadedNet loaded;
   try {
-    cv::dnn::Net net = cv::dnn::readNetFromONNX(bytes->data(), bytes->size());
-    if (net.empty()) return Status::Error(model_path.string() + ": OpenCV read an empty network");
-    net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-    net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
-    return net;
+    loaded.net = cv::dnn::readNetFromONNX(prepared->bytes.data(), prepared->bytes.size());
   } catch (const cv::Exception& error) {
-    return Status::Error(model_path.string() +
-                         ": OpenCV DNN cannot load this ONNX model (export the raw head, opset "
-                         "12, static shapes; see README): " +
-                         OpenCvMessage(error));
+    return Status::Error(CannotLoad(model_path, *prepared) + ": " + OpenCvMessage(error));
   } catch (const std::exception& error) {
-    return Status::Error(model_path.string() +
-                         ": OpenCV DNN cannot load this ONNX model: " + error.what());
+    return Status::Error(CannotLoad(model_path, *prepared) + ": " + error.what());
   }
+  if (loaded.net.empty()) {
+    return Status::Error(model_path.string() + ": OpenCV read an empty network");
+  }
+  loaded.net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+  loaded.net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  prepared->bytes.clear();
+  loaded.prepared = std::move(*prepared);
+  return loaded;
+}
+
+// 'class_names', or when empty the model's metadata names; a head whose class count the graph
+// shows must have as many.
+Result<std::vector<std::string>> ResolveClassNames(const fs::path& model_path,
+                                                   std::vector<std::string> class_names,
+                                                   const PreparedOnnxModel& prepared) {
+  if (class_names.empty()) {
+    if (!prepared.names_error.empty()) {
+      return Status::Error(model_path.string() + ": " + prepared.names_error);
+    }
+    if (prepared.class_names.empty()) {
+      return Status::Error(model_path.string() +
+                           ": no class names (no .names file beside the model, no --classes "
+                           "FILE, and no 'names' in the model's metadata)");
+    }
+    class_names = prepared.class_names;
+  }
+  if (prepared.head_classes && *prepared.head_classes != static_cast<int>(class_names.size())) {
+    return Status::Error(model_path.string() + ": class-count mismatch: the model's head has " +
+                         std::to_string(*prepared.head_classes) + " classes, but there are " +
+                         std::to_string(class_names.size()) + " class names");
+  }
+  return class_names;
 }
 
 }  // namespace
@@ -100,16 +144,21 @@ bool YoloOptions::Validate(std::string* error) const {
 
 Result<std::unique_ptr<YoloDetector>> YoloDetector::Load(const fs::path& model_path,
                                                          std::vector<std::string> class_names,
-                                                         const YoloOptions& options) {
+                                                         const YoloOptions& options,
+                                                         const fs::path& class_map) {
   std::string error;
   if (!options.Validate(&error)) return Status::Error(error);
-  if (class_names.empty()) return Status::Error(model_path.string() + ": no class names");
   YoloOptions resolved = options;
   std::optional<std::pair<int, int>> exported;
-  Result<cv::dnn::Net> net = ReadNet(model_path, &resolved, &exported);
-  if (!net.ok()) return net.status();
+  Result<LoadedNet> loaded = ReadNet(model_path, &resolved, &exported);
+  if (!loaded.ok()) return loaded.status();
+  Result<std::vector<std::string>> names =
+      ResolveClassNames(model_path, std::move(class_names), loaded->prepared);
+  if (!names.ok()) return names.status();
   std::unique_ptr<YoloDetector> detector(
-      new YoloDetector(std::move(*net), std::move(class_names), resolved));
+      new YoloDetector(std::move(loaded->net), *names, resolved));
+  detector->model_class_names_ = std::move(*names);
+  detector->decoding_removed_ = loaded->prepared.decoding_removed;
   const cv::Mat grey(resolved.input_size(), CV_8UC3, cv::Scalar::all(kLetterboxGrey));
   Result<cv::Mat> output = detector->Forward(grey);
   if (!output.ok() && exported &&
@@ -120,10 +169,16 @@ Result<std::unique_ptr<YoloDetector>> YoloDetector::Load(const fs::path& model_p
   }
   if (!output.ok()) return output.status().WithContext(model_path.string());
   Result<HeadLayout> head =
-      IdentifyHead(*output, int(detector->class_names_.size()), resolved.input_size());
+      IdentifyHead(*output, int(detector->model_class_names_.size()), resolved.input_size());
   if (!head.ok()) return head.status().WithContext(model_path.string());
   detector->head_ = *head;
   detector->anchors_ = MakeAnchors(resolved.input_size());
+  if (!class_map.empty()) {
+    Result<ClassMap> map = LoadClassMap(class_map, detector->model_class_names_);
+    if (!map.ok()) return map.status();
+    detector->class_names_ = map->classes;
+    detector->class_map_ = std::move(*map);
+  }
   return detector;
 }
 
@@ -180,8 +235,9 @@ Result<std::vector<Detection>> YoloDetector::Detect(const cv::Mat& rgb) {
   if (!output.ok()) return output.status();
   Result<HeadLayout> head = IdentifyHead(*output, head_.classes, options_.input_size());
   if (!head.ok()) return head.status();
-  const std::vector<Candidate> candidates =
+  std::vector<Candidate> candidates =
       DecodeHead(*output, *head, anchors_, options_.confidence_threshold);
+  if (class_map_) candidates = MapCandidates(std::move(candidates), *class_map_);
   std::vector<Detection> detections;
   const double limits[4] = {double(rgb.cols), double(rgb.rows), double(rgb.cols), double(rgb.rows)};
   for (int index : ClassWiseNms(candidates, options_.nms_iou_threshold, options_.max_detections)) {
@@ -227,11 +283,19 @@ Result<std::vector<std::string>> LoadModelClassNames(const fs::path& model_path,
 
 Result<std::unique_ptr<YoloDetector>> LoadYoloDetector(const fs::path& model_path,
                                                        const fs::path& classes_path,
-                                                       const YoloOptions& options) {
+                                                       const YoloOptions& options,
+                                                       const fs::path& class_map) {
   SEMCHAIN_RETURN_IF_ERROR(CheckModelFile(model_path));
-  Result<std::vector<std::string>> names = LoadModelClassNames(model_path, classes_path);
-  if (!names.ok()) return names.status();
-  return YoloDetector::Load(model_path, std::move(*names), options);
+  fs::path beside = model_path;
+  beside.replace_extension(".names");
+  std::error_code ec;
+  std::vector<std::string> names;  // empty: the model's metadata names
+  if (!classes_path.empty() || fs::exists(beside, ec)) {
+    Result<std::vector<std::string>> read = LoadModelClassNames(model_path, classes_path);
+    if (!read.ok()) return read.status();
+    names = std::move(*read);
+  }
+  return YoloDetector::Load(model_path, std::move(names), options, class_map);
 }
 
 }  // namespace semchain::detection
