@@ -197,7 +197,7 @@ def _run_val(args: argparse.Namespace) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = OneLineParser(prog=PROGRAM, description="Train, validate, prune and export semchain's detector.")
-    commands = parser.add_subparsers(dest="command", metavar="{train,val,prune,export}", parser_class=OneLineParser)
+    commands = parser.add_subparsers(dest="command", metavar="{train,val,prune,export,curve}", parser_class=OneLineParser)
     commands.required = True
     train = commands.add_parser("train", help="train a detector on a data.yaml")
     _add_train_arguments(train)
@@ -208,6 +208,7 @@ def build_parser() -> argparse.ArgumentParser:
     for name, module_name, text in (
         ("prune", "semchain_train.prune_cli", "LAMP channel pruning to a FLOPs speed-up, then fine-tuning"),
         ("export", "semchain_train.export", "export to the raw-head ONNX the C++ runtime runs"),
+        ("curve", "semchain_train.curve", "the learning curve (val mAP, losses per epoch) of results.csv files as a PNG"),
     ):
         sub = commands.add_parser(name, help=text)
         try:
