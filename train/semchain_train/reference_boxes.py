@@ -68,7 +68,11 @@ class _Network:
             if len(dims) != 4 or dims[2] <= 0 or dims[3] <= 0:
                 raise ValueError(f"{path}: expected a static 1x3xHxW input, found {dims}")
             self.input_size = (dims[3], dims[2])
-            self.net = cv2.dnn.readNetFromONNX(str(path))
+            from .onnx_import import float32_model
+
+            # FLOAT16 weights (export --half) cast back as semchain's loader does; OpenCV reads no FLOAT16.
+            buffer = np.frombuffer(float32_model(graph).SerializeToString(), dtype=np.uint8)
+            self.net = cv2.dnn.readNetFromONNX(buffer)
             names_path = path.with_suffix(".names")
             if not names_path.is_file():
                 raise FileNotFoundError(f"{names_path}: no class-names file beside the model")
