@@ -67,6 +67,16 @@ int LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans
   return matched.load();
 }
 
+// 'candidates' with the scan indices of their nodes ('node_scans', one per graph node).
+std::vector<LoopClosureCandidate> WithScans(std::vector<LoopClosureCandidate> candidates,
+                                            const std::vector<int>& node_scans) {
+  for (LoopClosureCandidate& candidate : candidates) {
+    candidate.from_scan = node_scans[static_cast<std::size_t>(candidate.from)];
+    candidate.to_scan = node_scans[static_cast<std::size_t>(candidate.to)];
+  }
+  return candidates;
+}
+
 }  // namespace
 
 IncrementalSlam::IncrementalSlam(const SlamOptions& options)
@@ -290,6 +300,7 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
   if (loop_closer_) {
     result.loop_closure = loop_closer_->statistics();
     result.loop_closure.follows = follows_;
+    result.loop_closure_candidates = WithScans(loop_closer_->candidates(), node_scans_);
   } else if (options_.pose_graph) {
     std::vector<const PreparedScan*> node_scans;
     std::vector<Pose2> node_poses;
@@ -300,6 +311,9 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     LoopClosureResult closed = CloseLoops(node_scans, node_poses, options_.loop_closure);
     for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k].second = closed.poses[k];
     result.loop_closure = std::move(closed.statistics);
+    std::vector<int> node_indices;
+    for (const auto& node : nodes) node_indices.push_back(node.first);
+    result.loop_closure_candidates = WithScans(std::move(closed.candidates), node_indices);
     ReleaseFreeMemory();  // the graph's submaps, before the final map is built
   }
   std::vector<Pose2> poses = InterpolatedPoses(scans_, scans_.size(), nodes);

@@ -39,6 +39,9 @@ struct SlamResult {
   int laser_odometry_rejected = 0;      // scans that kept their wheel odometry increment
   RbpfStatistics statistics;
   LoopClosureStatistics loop_closure;  // with SlamOptions::pose_graph
+  // With the pose graph's record_candidates: every match its searches scored, with the scan
+  // indices of their nodes.
+  std::vector<LoopClosureCandidate> loop_closure_candidates;
   // Wall time of each stage, seconds.
   double laser_odometry_seconds = 0.0;
   double filter_seconds = 0.0;

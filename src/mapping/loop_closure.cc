@@ -89,6 +89,10 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "follow_min_shift_meters and follow_min_turn_radians must be positive";
     return false;
   }
+  if (!(record_min_score > 0.0 && record_min_score <= 1.0)) {
+    *error = "record_min_score must be in (0, 1]";
+    return false;
+  }
   if (!(max_residual_sigmas > 0.0)) {
     *error = "max_residual_sigmas must be positive";
     return false;
@@ -387,6 +391,15 @@ double MotionNoiseScale(const std::vector<Innovation>& innovations, double min_s
   return std::exp(high);
 }
 
+// Whether a match found with a lower bound (recording candidates) reaches 'min_score' as the
+// matcher itself decides: its score is a sum of bytes (255 a point) over the points, and a
+// match counts when that sum is at least ceil(min_score · 255 · points).
+bool ReachesMinScore(double score, std::size_t points, double min_score) {
+  const double normalizer = 255.0 * static_cast<double>(points);
+  return std::llround(score * normalizer) >=
+         static_cast<long long>(std::ceil(min_score * normalizer));
+}
+
 // 'edges' with the motion edges' standard deviations multiplied by sqrt(scale).
 std::vector<PoseGraphEdge> ScaledMotion(const std::vector<PoseGraphEdge>& edges, double scale) {
   std::vector<PoseGraphEdge> scaled = edges;
@@ -422,6 +435,8 @@ struct LoopCloser::State {
   std::vector<Innovation> innovations;
   double scale = 1.0;
   std::optional<ChainUncertainty> chain;
+  // With options.record_candidates: every match scored (PoseGraphEdge::id indexes it).
+  std::vector<LoopClosureCandidate> candidates;
 
   bool Add(const PreparedScan& scan, const Pose2& pose);
   // Optimizes from 'initial', drops the closures the others contradict and takes the solution;
@@ -493,6 +508,19 @@ LoopClosureStatistics LoopCloser::statistics() const {
   return stats;
 }
 
+std::vector<LoopClosureCandidate> LoopCloser::candidates() const {
+  std::vector<LoopClosureCandidate> candidates = state_->candidates;
+  for (const PoseGraphEdge& edge : state_->edges) {
+    if (!edge.loop_closure || edge.id < 0) continue;
+    LoopClosureCandidate& candidate = candidates[static_cast<std::size_t>(edge.id)];
+    const double squared = WhitenedResidual(edge, state_->estimate).squaredNorm();
+    candidate.in_graph = true;
+    candidate.residual_sigmas = std::sqrt(squared);
+    candidate.weight = LoopEdgeWeight(state_->options.optimizer, squared);
+  }
+  return candidates;
+}
+
 bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   node_points.push_back(
       SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step).points);
@@ -534,6 +562,9 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   Submap* best_submap = nullptr;
   BranchAndBoundResult best;
   RelativeUncertainty best_uncertainty;
+  const bool record = options.record_candidates;
+  int best_candidate = -1;  // the recorded candidate of best_submap
+  int highest = -1;         // the recorded candidate of this search scoring highest
   for (Submap& submap : submaps) {
     if (!submap.finished || travel[i] - travel[static_cast<std::size_t>(submap.last)] <
                                 options.min_loop_travel_meters) {
@@ -549,14 +580,35 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     const double held = Acquire(&submap, best_submap, ++tick, &submaps, options);
     stats.built_submaps_peak_megabytes = std::max(stats.built_submaps_peak_megabytes, held);
     searched = true;
-    const BranchAndBoundResult match =
-        submap.matcher->Match(points, window, std::max(options.min_score, best.score));
-    if (match.found && match.score > best.score) {
+    // Recording, every submap is searched down to the recording floor; the closure picked
+    // below is the same (the matcher finds the same best pose above any lower bound).
+    const double bound = record ? std::min(options.record_min_score, options.min_score)
+                                : std::max(options.min_score, best.score);
+    const BranchAndBoundResult match = submap.matcher->Match(points, window, bound);
+    if (!match.found) continue;
+    if (record) {
+      LoopClosureCandidate candidate;
+      candidate.from = submap.first;
+      candidate.to = node;
+      candidate.submap = static_cast<int>(&submap - submaps.data());
+      candidate.score = match.score;
+      candidate.relative =
+          RefineWithCeres(*submap.match_grid, points, match.pose, options.refinement).pose;
+      candidates.push_back(candidate);
+      const int index = static_cast<int>(candidates.size()) - 1;
+      if (highest < 0 || match.score > candidates[static_cast<std::size_t>(highest)].score) {
+        highest = index;
+      }
+      if (!ReachesMinScore(match.score, points.size(), options.min_score)) continue;
+      if (match.score > best.score) best_candidate = index;
+    }
+    if (match.score > best.score) {
       best = match;
       best_submap = &submap;
       best_uncertainty = uncertainty;
     }
   }
+  if (highest >= 0) candidates[static_cast<std::size_t>(highest)].best_of_search = true;
   stats.search_seconds += SecondsSince(search_start);
   if (searched) ++stats.searches;
   if (best_submap == nullptr) return false;
@@ -565,6 +617,13 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   closure.to = node;
   closure.relative =
       RefineWithCeres(*best_submap->match_grid, points, best.pose, options.refinement).pose;
+  closure.id = best_candidate;
+  LoopClosureCandidate* candidate =
+      best_candidate >= 0 ? &candidates[static_cast<std::size_t>(best_candidate)] : nullptr;
+  // What verification made of a recorded closure (by its edge id).
+  const auto verified = [this](int id, ClosureVerification verification) {
+    if (id >= 0) candidates[static_cast<std::size_t>(id)].verification = verification;
+  };
   if (options.unknown_is_neutral) {
     const KnownAgreement agreement = AgreementOnKnownCells(*best_submap, points, closure.relative);
     if (agreement.fraction < options.min_known_fraction || agreement.score < options.min_score) {
@@ -572,6 +631,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     }
   }
   ++stats.found;
+  if (candidate != nullptr) candidate->passed_score = true;
   closure.sigmas = Eigen::Vector3d(options.loop_sigma_meters, options.loop_sigma_meters,
                                    options.loop_sigma_radians);
   closure.loop_closure = true;
@@ -584,9 +644,10 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   innovation.motion = best_uncertainty.motion;
   innovation.fixed = best_uncertainty.fixed;
   innovation.fixed.diagonal() += LoopVariances(options);
-  const bool off_prediction =
-      options.gate_sigmas > 0.0 &&
-      SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed) > gate;
+  const double innovation_squared =
+      SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed);
+  if (candidate != nullptr) candidate->innovation_sigmas = std::sqrt(innovation_squared);
+  const bool off_prediction = options.gate_sigmas > 0.0 && innovation_squared > gate;
   // Travel from an earlier closure's node to this one, and whether that closure says the same
   // of the map as this one.
   const auto travel_since = [&](const PoseGraphEdge& other) {
@@ -617,17 +678,20 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     if (confirming != candidates_end) {
       --stats.gated;  // the pending closure is added after all
       edges.push_back(*confirming);
+      verified(confirming->id, ClosureVerification::kConfirmed);
       pending.clear();
     } else if (off_prediction || !last_accepted.has_value() ||
                travel_since(*last_accepted) > options.confirm_within_meters ||
                !agrees_with(*last_accepted)) {
       if (!corridor) pending.clear();  // it replaces the earlier one
       pending.push_back(closure);
+      verified(closure.id, ClosureVerification::kHeldBack);
       ++stats.gated;
       return false;
     }
   }
   edges.push_back(closure);
+  verified(closure.id, ClosureVerification::kAdded);
   const std::size_t closure_index = edges.size() - 1;
   if (options.adapt_motion_noise) {
     innovations.push_back(innovation);
@@ -672,7 +736,7 @@ LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
     closer.AddNode(*scans[i], poses[i]);
   }
   if (progress) progress(poses.size());
-  return {closer.estimate(), closer.statistics()};
+  return {closer.estimate(), closer.statistics(), closer.candidates()};
 }
 
 }  // namespace semchain::mapping

@@ -141,6 +141,13 @@ struct LoopClosureOptions {
   bool background = false;
   double follow_min_shift_meters = 0.1;
   double follow_min_turn_radians = 0.02;
+  // Measurement (`semchain bench closures`): every submap searched keeps its best match scoring
+  // at least record_min_score as a candidate (LoopCloser::candidates()), refined as a closure
+  // is. Each submap is then searched down to that score instead of the best score found so far,
+  // which is slower, but the search picks the same closures (branch-and-bound finds the same
+  // best pose above any lower bound), so the result does not change.
+  bool record_candidates = false;
+  double record_min_score = 0.4;
 
   bool Validate(std::string* error) const;
 };
@@ -163,9 +170,44 @@ struct LoopClosureStatistics {
   std::vector<double> residuals;
 };
 
+// What became of a match the loop closer scored (LoopClosureOptions::record_candidates).
+enum class ClosureVerification {
+  kNotReached,  // not the search's closure: another submap scored higher, or below min_score
+  kAdded,       // added to the graph when found
+  kConfirmed,   // held back (off the motion's prediction, or every closure waits), then added
+                // when a later closure agreed with it
+  kHeldBack,    // held back and never confirmed
+};
+
+struct LoopClosureCandidate {
+  int from = 0;  // first node of the submap matched (the closure's 'from')
+  int to = 0;    // the node searched from
+  int submap = 0;
+  // Scan indices of the two nodes, where the caller knows them (IncrementalSlam); else -1.
+  int from_scan = -1;
+  int to_scan = -1;
+  double score = 0.0;           // branch-and-bound score (mean M of the query's points, 0..1)
+  Pose2 relative;               // node 'to' in the frame of node 'from', refined as a closure is
+  bool best_of_search = false;  // the highest score of the submaps searched from 'to'
+  // The score gate: best of its search, at least min_score and, with unknown_is_neutral, enough
+  // of the query on observed cells scoring min_score there. Only these reach verification.
+  bool passed_score = false;
+  ClosureVerification verification = ClosureVerification::kNotReached;
+  // Mahalanobis distance (σ) of the closure from where the graph predicted the node when found
+  // (what gate_sigmas compares; 0 for candidates that did not reach verification).
+  double innovation_sigmas = 0.0;
+  // At the end: still an edge of the graph (not dropped by the back end), its whitened
+  // residual norm and the weight the loop-closure loss gives it (LoopEdgeWeight; 0 when not in
+  // the graph).
+  bool in_graph = false;
+  double residual_sigmas = 0.0;
+  double weight = 0.0;
+};
+
 struct LoopClosureResult {
   std::vector<Pose2> poses;  // one per node, optimized
   LoopClosureStatistics statistics;
+  std::vector<LoopClosureCandidate> candidates;  // with record_candidates
 };
 
 // The pose graph fed one node at a time, while the filter runs: AddNode takes node i's scan and
@@ -196,6 +238,8 @@ class LoopCloser {
   // edges from them and optimizes again with the loop closures found (no new search).
   void Reoptimize(const std::vector<Pose2>& filter_poses);
   LoopClosureStatistics statistics() const;
+  // With record_candidates: every match scored, in the order found, with its state now.
+  std::vector<LoopClosureCandidate> candidates() const;
 
  private:
   struct State;

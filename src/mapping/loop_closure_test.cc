@@ -161,6 +161,43 @@ TEST(LoopClosureTest, TheBuiltSubmapCacheDoesNotChangeTheResult) {
   EXPECT_LT(c.statistics.built_submaps_peak_megabytes, b.statistics.built_submaps_peak_megabytes);
 }
 
+// Recording every match (bench closures) searches each submap down to a lower score but picks
+// the same closures: the same poses. The candidates hold every closure the graph kept, each
+// where the truth puts its node relative to the submap's first node, and matches below
+// min_score that never reach verification.
+TEST(LoopClosureTest, RecordingTheCandidatesDoesNotChangeTheResult) {
+  const LoopRun run = DriveTwoLaps(DegToRad(0.05));
+  LoopClosureOptions recording;
+  recording.record_candidates = true;
+  const LoopClosureResult plain = CloseLoops(Pointers(run.scans), run.drifted, {});
+  const LoopClosureResult recorded = CloseLoops(Pointers(run.scans), run.drifted, recording);
+  ExpectSameResult(plain, recorded);
+  EXPECT_TRUE(plain.candidates.empty());
+  int in_graph = 0, below = 0, best = 0;
+  for (const LoopClosureCandidate& c : recorded.candidates) {
+    EXPECT_GE(c.score, recording.record_min_score);
+    if (c.best_of_search) ++best;
+    if (c.score < recording.min_score) {
+      ++below;
+      EXPECT_FALSE(c.passed_score);
+      EXPECT_EQ(c.verification, ClosureVerification::kNotReached);
+    }
+    if (!c.in_graph) continue;
+    ++in_graph;
+    EXPECT_TRUE(c.passed_score && c.best_of_search);
+    EXPECT_NE(c.verification, ClosureVerification::kNotReached);
+    EXPECT_NE(c.verification, ClosureVerification::kHeldBack);
+    EXPECT_GT(c.weight, 0.0);
+    const Pose2 truth = run.truth[static_cast<std::size_t>(c.from)].Between(
+        run.truth[static_cast<std::size_t>(c.to)]);
+    EXPECT_LT((c.relative.translation() - truth.translation()).norm(), 0.3)
+        << c.from << "-" << c.to;
+  }
+  EXPECT_EQ(in_graph, recorded.statistics.accepted);
+  EXPECT_GT(below, 0);
+  EXPECT_LE(best, recorded.statistics.searches);
+}
+
 // Closures that land where a drift-free filter predicts (within their own noise) make the
 // chain stiff: the graph then keeps the filter's poses instead of following each closure's few
 // centimetres and milliradians of match noise.

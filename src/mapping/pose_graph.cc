@@ -2,16 +2,22 @@
 
 #include <ceres/ceres.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
 
 #include "core/angles.h"
 #include "core/check.h"
+#include "mapping/dynamic_covariance_scaling.h"
 
 namespace semchain::mapping {
 
 bool PoseGraphOptions::Validate(std::string* error) const {
+  if (!(dcs_phi > 0.0)) {
+    *error = "dcs_phi must be positive";
+    return false;
+  }
   if (!(loop_loss_scale > 0.0)) {
     *error = "loop_loss_scale must be positive";
     return false;
@@ -75,58 +81,99 @@ Eigen::Vector3d WhitenedResidual(const PoseGraphEdge& edge, const std::vector<Po
   return residual;
 }
 
-PoseGraphSolution OptimizePoseGraph(const std::vector<Pose2>& initial,
-                                    const std::vector<PoseGraphEdge>& edges,
-                                    const PoseGraphOptions& options) {
-  std::string error;
-  SEMCHAIN_CHECK(options.Validate(&error));
-  const auto start = std::chrono::steady_clock::now();
-  PoseGraphSolution solution;
-  std::vector<std::array<double, 3>> parameters;
-  parameters.reserve(initial.size());
-  for (const Pose2& pose : initial) parameters.push_back({pose.x, pose.y, pose.theta});
+namespace {
 
+using Parameters = std::vector<std::array<double, 3>>;
+
+// One Ceres solve of 'edges' over 'parameters' (updated in place), the loop closures through
+// 'loop_loss' (may be null: squared).
+ceres::Solver::Summary Solve(const std::vector<PoseGraphEdge>& edges,
+                             ceres::LossFunction* loop_loss, const PoseGraphOptions& options,
+                             Parameters* parameters) {
   ceres::Problem::Options problem_options;
-  // The cost functions are owned by the problem; the loop-closure loss is shared.
+  // The cost functions are owned by the problem; the loop-closure loss is the caller's.
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
-  ceres::HuberLoss huber(options.loop_loss_scale);
-  ceres::CauchyLoss cauchy(options.loop_loss_scale);
-  ceres::LossFunction* loop_loss = nullptr;
-  if (options.loop_loss == RobustLoss::kHuber) loop_loss = &huber;
-  if (options.loop_loss == RobustLoss::kCauchy) loop_loss = &cauchy;
   for (const PoseGraphEdge& edge : edges) {
-    SEMCHAIN_CHECK(edge.from >= 0 && edge.to >= 0 &&
-                   static_cast<std::size_t>(std::max(edge.from, edge.to)) < initial.size());
-    SEMCHAIN_CHECK((edge.sigmas.array() > 0.0).all());
     if (edge.from == edge.to) continue;
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseCost, 3, 3, 3>(
         new RelativePoseCost(edge.relative, edge.sigmas));
     problem.AddResidualBlock(cost, edge.loop_closure ? loop_loss : nullptr,
-                             parameters[static_cast<std::size_t>(edge.from)].data(),
-                             parameters[static_cast<std::size_t>(edge.to)].data());
+                             (*parameters)[static_cast<std::size_t>(edge.from)].data(),
+                             (*parameters)[static_cast<std::size_t>(edge.to)].data());
   }
-  if (!parameters.empty() && problem.HasParameterBlock(parameters.front().data())) {
-    problem.SetParameterBlockConstant(parameters.front().data());
+  if (!parameters->empty() && problem.HasParameterBlock(parameters->front().data())) {
+    problem.SetParameterBlockConstant(parameters->front().data());
   }
-
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver_options.max_num_iterations = options.max_iterations;
   solver_options.num_threads = options.threads;
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  if (problem.NumResidualBlocks() > 0) {
-    ceres::Solve(solver_options, &problem, &summary);
-    solution.initial_cost = summary.initial_cost;
-    solution.final_cost = summary.final_cost;
-    solution.iterations = static_cast<int>(summary.iterations.size());
-    solution.converged = summary.termination_type == ceres::CONVERGENCE;
-  } else {
-    solution.converged = true;
+  if (problem.NumResidualBlocks() > 0) ceres::Solve(solver_options, &problem, &summary);
+  return summary;
+}
+
+}  // namespace
+
+double LoopEdgeWeight(const PoseGraphOptions& options, double squared_norm) {
+  const double scale = options.loop_loss_scale;
+  switch (options.loop_loss) {
+    case RobustLoss::kNone:
+      return 1.0;
+    case RobustLoss::kHuber:  // ρ' = a / |r| beyond the scale a
+      return squared_norm <= scale * scale ? 1.0 : std::sqrt(scale / std::sqrt(squared_norm));
+    case RobustLoss::kCauchy:  // ρ' = 1 / (1 + χ² / a²)
+      return std::sqrt(1.0 / (1.0 + squared_norm / (scale * scale)));
+    case RobustLoss::kDynamicCovarianceScaling:
+      return DcsScale(squared_norm, options.dcs_phi);
   }
+  return 1.0;
+}
+
+PoseGraphSolution OptimizePoseGraph(const std::vector<Pose2>& initial,
+                                    const std::vector<PoseGraphEdge>& edges,
+                                    const PoseGraphOptions& options) {
+  std::string error;
+  SEMCHAIN_CHECK(options.Validate(&error));
+  const auto start = std::chrono::steady_clock::now();
+  for (const PoseGraphEdge& edge : edges) {
+    SEMCHAIN_CHECK(edge.from >= 0 && edge.to >= 0 &&
+                   static_cast<std::size_t>(std::max(edge.from, edge.to)) < initial.size());
+    SEMCHAIN_CHECK((edge.sigmas.array() > 0.0).all());
+  }
+  Parameters parameters;
+  parameters.reserve(initial.size());
+  for (const Pose2& pose : initial) parameters.push_back({pose.x, pose.y, pose.theta});
+
+  ceres::HuberLoss huber(options.loop_loss_scale);
+  ceres::CauchyLoss cauchy(options.loop_loss_scale);
+  DynamicCovarianceScalingLoss dcs(options.dcs_phi);
+  const bool switching = options.loop_loss == RobustLoss::kDynamicCovarianceScaling;
+  ceres::LossFunction* loop_loss = nullptr;
+  if (options.loop_loss == RobustLoss::kHuber || switching) loop_loss = &huber;
+  if (options.loop_loss == RobustLoss::kCauchy) loop_loss = &cauchy;
+  PoseGraphSolution solution;
+  ceres::Solver::Summary summary = Solve(edges, loop_loss, options, &parameters);
+  solution.initial_cost = summary.initial_cost;
+  solution.iterations = static_cast<int>(summary.iterations.size());
+  if (switching) {  // DCS from the Huber solution (PoseGraphOptions::loop_loss)
+    summary = Solve(edges, &dcs, options, &parameters);
+    solution.iterations += static_cast<int>(summary.iterations.size());
+  }
+  solution.final_cost = summary.final_cost;
+  // No residual block: nothing to do, which is converged too.
+  solution.converged = summary.termination_type == ceres::CONVERGENCE || summary.iterations.empty();
   solution.poses.reserve(parameters.size());
   for (const auto& p : parameters) solution.poses.emplace_back(p[0], p[1], NormalizeAngle(p[2]));
+  solution.weights.reserve(edges.size());
+  for (const PoseGraphEdge& edge : edges) {
+    solution.weights.push_back(
+        edge.loop_closure && edge.from != edge.to
+            ? LoopEdgeWeight(options, WhitenedResidual(edge, solution.poses).squaredNorm())
+            : 1.0);
+  }
   solution.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return solution;

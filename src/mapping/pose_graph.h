@@ -12,7 +12,8 @@
 // optimizer finds the poses that best agree with every edge. Loop-closure edges go through a
 // robust loss, so that one wrong closure cannot pull the graph with more than a bounded force,
 // and closures the others contradict are found by their residuals and dropped
-// (OptimizeRejectingInconsistent); the first node is held fixed (the graph's frame).
+// (OptimizeRejectingInconsistent) or, with dynamic covariance scaling, switched off within the
+// optimization itself; the first node is held fixed (the graph's frame).
 namespace semchain::mapping {
 
 struct PoseGraphEdge {
@@ -22,12 +23,19 @@ struct PoseGraphEdge {
   // Standard deviations of the relative pose's x, y (metres) and θ (radians).
   Eigen::Vector3d sigmas = Eigen::Vector3d(0.05, 0.05, 0.01);
   bool loop_closure = false;
+  int id = -1;  // the caller's label (e.g. which loop-closure candidate the edge came from)
 };
 
 enum class RobustLoss {
   kNone,    // squared residuals
   kHuber,   // linear beyond the scale: bounded pull, still convex (converges from far away)
   kCauchy,  // pull falls off beyond the scale (stalls far from a large correction)
+  // Dynamic covariance scaling (dynamic_covariance_scaling.h): a closure the others contradict
+  // is switched off (its scale s falls towards 0) and adds at most 3Φ to the cost. DCS is not
+  // convex: a right closure that starts tens of σ off (after a long loop) would be switched off
+  // before the graph moves, so the graph is first solved with the Huber loss (loop_loss_scale),
+  // which pulls it most of the way, and then with DCS from there.
+  kDynamicCovarianceScaling,
 };
 
 struct PoseGraphOptions {
@@ -36,6 +44,9 @@ struct PoseGraphOptions {
   // still pull the graph all the way; Cauchy would treat it as an outlier.
   RobustLoss loop_loss = RobustLoss::kHuber;
   double loop_loss_scale = 3.0;
+  // Φ of dynamic covariance scaling, in squared whitened residual (χ²): a closure with χ² ≤ Φ
+  // keeps its full weight, one with χ² = 3Φ half of it, one with χ² = 19Φ a tenth.
+  double dcs_phi = 5.0;
   int max_iterations = 50;
   int threads = 1;
   bool Validate(std::string* error) const;
@@ -48,6 +59,9 @@ struct PoseGraphSolution {
   int iterations = 0;
   bool converged = false;
   double seconds = 0.0;
+  // One per edge given, in their order: LoopEdgeWeight of the loop closures at 'poses', 1 for
+  // the other edges.
+  std::vector<double> weights;
 };
 
 // Optimizes 'initial' (one pose per node) under 'edges' (node indices within 'initial').
@@ -59,6 +73,11 @@ struct GatedPoseGraphSolution {
   PoseGraphSolution solution;
   std::vector<int> rejected;  // indices into the edges of the loop closures dropped
 };
+
+// The weight 'options'' loop-closure loss gives an edge whose squared whitened residual is
+// 'squared_norm': sqrt(ρ'(χ²)), the factor iteratively reweighted least squares scales its
+// residual by (1 within the loss's scale; for dynamic covariance scaling its s, for no loss 1).
+double LoopEdgeWeight(const PoseGraphOptions& options, double squared_norm);
 
 // Optimizes, then drops the loop closure with the largest whitened residual norm while it
 // exceeds 'max_residual_sigmas' (the others contradict it) and optimizes again, from 'initial'.

@@ -162,11 +162,40 @@ Status ReadEveryScan(const yaml::Node& root, EveryScanOptions* e) {
   return ReadSection(*node, "matcher", MatcherFields(&e->matcher));
 }
 
+// pose_graph.loop_loss: none, huber, cauchy or dcs (dynamic covariance scaling).
+Status ReadLoopLoss(const yaml::Node& root, PoseGraphOptions* optimizer) {
+  if (!root.Has("pose_graph")) return Status::Ok();
+  const Result<yaml::Node> node = root.Get("pose_graph");
+  if (!node.ok()) return node.status();
+  if (!node->IsMap() || !node->Has("loop_loss")) return Status::Ok();
+  const Result<yaml::Node> value = node->Get("loop_loss");
+  if (!value.ok()) return value.status();
+  std::string name;
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "loop_loss", &name));
+  const std::pair<const char*, RobustLoss> losses[] = {
+      {"none", RobustLoss::kNone},
+      {"huber", RobustLoss::kHuber},
+      {"cauchy", RobustLoss::kCauchy},
+      {"dcs", RobustLoss::kDynamicCovarianceScaling}};
+  for (const auto& [known, loss] : losses) {
+    if (name == known) {
+      optimizer->loop_loss = loss;
+      return Status::Ok();
+    }
+  }
+  return value->Error("loop_loss must be none, huber, cauchy or dcs, not '" + name + "'");
+}
+
 // pose_graph: {enabled, submap_travel_meters, ...}: the pose graph behind the filter.
 Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
   LoopClosureOptions& l = options->loop_closure;
+  SEMCHAIN_RETURN_IF_ERROR(ReadLoopLoss(root, &l.optimizer));
+  std::string loop_loss;  // read above; listed so that the key is allowed
   return ReadSection(root, "pose_graph",
                      {{"enabled", &options->pose_graph},
+                      {"loop_loss", &loop_loss},
+                      {"loop_loss_scale", &l.optimizer.loop_loss_scale},
+                      {"dcs_phi", &l.optimizer.dcs_phi},
                       {"submap_travel_meters", &l.submap_travel_meters},
                       {"min_loop_travel_meters", &l.min_loop_travel_meters},
                       {"search_every_nodes", &l.search_every_nodes},

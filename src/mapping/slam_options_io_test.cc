@@ -72,6 +72,9 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(l.min_motion_noise_scale, d.min_motion_noise_scale);
   EXPECT_DOUBLE_EQ(l.max_motion_noise_scale, d.max_motion_noise_scale);
   EXPECT_DOUBLE_EQ(l.max_residual_sigmas, d.max_residual_sigmas);
+  EXPECT_EQ(l.optimizer.loop_loss, d.optimizer.loop_loss);
+  EXPECT_DOUBLE_EQ(l.optimizer.loop_loss_scale, d.optimizer.loop_loss_scale);
+  EXPECT_DOUBLE_EQ(l.optimizer.dcs_phi, d.optimizer.dcs_phi);
   EXPECT_EQ(l.online, d.online);
   EXPECT_EQ(l.online_lag_nodes, d.online_lag_nodes);
   EXPECT_EQ(l.background, d.background);
@@ -130,6 +133,25 @@ TEST(SlamOptionsIoTest, UnknownKeysAndBadValuesAreErrors) {
   status = ReadSlamOptions(*root, &options);
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("windw"), std::string::npos) << status.message();
+}
+
+TEST(SlamOptionsIoTest, TheLoopClosureLossByName) {
+  SlamOptions options;
+  Result<yaml::Node> root =
+      yaml::Node::LoadString("pose_graph: {loop_loss: dcs, dcs_phi: 2.5}\n", "a.yaml");
+  ASSERT_TRUE(root.ok());
+  ASSERT_TRUE(ReadSlamOptions(*root, &options).ok());
+  EXPECT_EQ(options.loop_closure.optimizer.loop_loss, RobustLoss::kDynamicCovarianceScaling);
+  EXPECT_DOUBLE_EQ(options.loop_closure.optimizer.dcs_phi, 2.5);
+  root = yaml::Node::LoadString("pose_graph: {loop_loss: huber}\n", "b.yaml");
+  ASSERT_TRUE(ReadSlamOptions(*root, &options).ok());
+  EXPECT_EQ(options.loop_closure.optimizer.loop_loss, RobustLoss::kHuber);
+  root =
+      yaml::Node::LoadString("pose_graph:\n  enabled: true\n  loop_loss: switchable\n", "c.yaml");
+  const Status status = ReadSlamOptions(*root, &options);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("c.yaml:3"), std::string::npos) << status.message();
+  EXPECT_NE(status.message().find("switchable"), std::string::npos) << status.message();
 }
 
 TEST(SlamOptionsIoTest, VariantsSwitchTheImprovements) {
