@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "semantic/object_association.h"
 #include "semantic/shape_fit.h"
 
 namespace semchain::semantic {
@@ -159,46 +160,22 @@ int JoinBridgedRegions(const std::vector<const DetectionObservation*>& observati
   return next;
 }
 
-// One object's share of a class layer: its cells with evidence and the detections on them.
-struct Part {
-  std::vector<Eigen::Vector2i> cells;
-  std::set<int> frames;
-  std::vector<std::size_t> members;  // indices of the observations
-};
-
-// Joins fragments of one object: same-class parts within 'merge_gap_cells' of each other that
-// the detector never reported as two objects at once in min_split_frames frames (a face cut off
-// by the image edge, seen on its own, is the same object; two cabinets side by side are seen
-// together as two).
-std::vector<Part> MergeFragments(std::vector<Part> parts, const ObjectExtractionOptions& options) {
-  const auto near = [&options](const Part& a, const Part& b) {
-    const long limit = static_cast<long>(options.merge_gap_cells) * options.merge_gap_cells;
-    for (const Eigen::Vector2i& p : a.cells) {
-      for (const Eigen::Vector2i& q : b.cells) {
-        if ((p - q).cast<long>().squaredNorm() <= limit) return true;
-      }
-    }
-    return false;
-  };
-  bool merged = true;
-  while (merged) {
-    merged = false;
-    for (std::size_t i = 0; i < parts.size() && !merged; ++i) {
-      for (std::size_t j = i + 1; j < parts.size() && !merged; ++j) {
-        int together = 0;
-        for (int frame : parts[i].frames)
-          together += static_cast<int>(parts[j].frames.count(frame));
-        if (together >= options.min_split_frames || !near(parts[i], parts[j])) continue;
-        parts[i].cells.insert(parts[i].cells.end(), parts[j].cells.begin(), parts[j].cells.end());
-        parts[i].frames.insert(parts[j].frames.begin(), parts[j].frames.end());
-        parts[i].members.insert(parts[i].members.end(), parts[j].members.begin(),
-                                parts[j].members.end());
-        parts.erase(parts.begin() + static_cast<long>(j));
-        merged = true;
-      }
-    }
+// The class's shape fitted to the part's cells (their mean points, weighted by the frames
+// that hit them), completed behind the side it was seen from and kept off the free space.
+FittedShape FitPart(const SemanticGrid& grid, int c, const ObjectPart& part,
+                    const ClassShapePrior& prior, const cv::Mat& free_space) {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<double> weights;
+  Eigen::Vector2d view = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2i& cell : part.cells) {
+    points.push_back(grid.MeanPoint(c, cell));
+    weights.push_back(std::max(1, grid.HitFrames(c, cell)));
+    view += grid.ViewDirection(c, cell);
   }
-  return parts;
+  if (view.norm() > 1e-9) view.normalize();
+  const std::vector<Eigen::Vector2d> free_points =
+      FreeCellsNear(free_space, grid.geometry(), points, prior.Extent() + 0.2);
+  return FitShape(points, weights, view, prior, free_points);
 }
 
 }  // namespace
@@ -226,7 +203,7 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
     }
     const int count = JoinBridgedRegions(of_class, components, o, labels);
 
-    std::vector<Part> pieces;
+    std::vector<ObjectPart> pieces;
     for (int label = 1; label < count; ++label) {
       std::vector<Eigen::Vector2i> region = CellsWithLabel(labels, label);
       if (static_cast<int>(region.size()) < o.min_cells) continue;
@@ -272,7 +249,7 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
         part_labels.at<int>(region[i].y(), region[i].x()) = assignment[i];
       }
       for (int part = 0; part < parts; ++part) {
-        Part piece;
+        ObjectPart piece;
         for (std::size_t i = 0; i < region.size(); ++i) {
           const Eigen::Vector2i& cell = region[i];
           if (assignment[i] == part && evidence.at<std::uint8_t>(cell.y(), cell.x())) {
@@ -290,34 +267,30 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
         if (!piece.cells.empty()) pieces.push_back(std::move(piece));
       }
     }
-    for (Part& piece : MergeFragments(std::move(pieces), o)) {
-      if (static_cast<int>(piece.cells.size()) < o.min_cells ||
-          static_cast<int>(piece.frames.size()) < o.min_observations) {
-        continue;
-      }
-      std::vector<Eigen::Vector2d> points;
-      std::vector<double> weights;
-      Eigen::Vector2d view = Eigen::Vector2d::Zero();
+    const ClassShapePrior prior = options.PriorOf(classes[c]);
+    std::vector<ObjectPart> parts =
+        MergeFragments(std::move(pieces), prior, grid.geometry().resolution, o);
+    // Specks: too small or too rarely seen to be objects (nor to move one by joining it).
+    std::erase_if(parts, [&o](const ObjectPart& part) {
+      return static_cast<int>(part.cells.size()) < o.min_cells ||
+             static_cast<int>(part.frames.size()) < o.min_observations;
+    });
+    const auto fit = [&](const ObjectPart& part) {
+      return FitPart(grid, c, part, prior, free_space);
+    };
+    for (const FittedPart& fitted : AssociateParts(std::move(parts), fit, prior, o)) {
       double probability_sum = 0.0;
-      for (const Eigen::Vector2i& cell : piece.cells) {
-        points.push_back(grid.MeanPoint(c, cell));
-        weights.push_back(std::max(1, grid.HitFrames(c, cell)));
-        view += grid.ViewDirection(c, cell);
+      for (const Eigen::Vector2i& cell : fitted.part.cells) {
         probability_sum += grid.Probability(c, cell);
       }
-      if (view.norm() > 1e-9) view.normalize();
-      const ClassShapePrior prior = options.PriorOf(classes[c]);
-      const std::vector<Eigen::Vector2d> free_points =
-          FreeCellsNear(free_space, grid.geometry(), points, prior.Extent() + 0.2);
-      const FittedShape shape = FitShape(points, weights, view, prior, free_points);
       SemanticObject object;
       object.id = static_cast<int>(result.objects.size());
       object.class_name = classes[c];
-      object.center = shape.center;
-      object.footprint = shape.footprint;
-      object.observations = static_cast<int>(piece.frames.size());
-      object.confidence = probability_sum / static_cast<double>(points.size());
-      for (std::size_t j : piece.members) result.observation_object[j] = object.id;
+      object.center = fitted.shape.center;
+      object.footprint = fitted.shape.footprint;
+      object.observations = static_cast<int>(fitted.part.frames.size());
+      object.confidence = probability_sum / static_cast<double>(fitted.part.cells.size());
+      for (std::size_t j : fitted.part.members) result.observation_object[j] = object.id;
       result.objects.push_back(std::move(object));
     }
   }

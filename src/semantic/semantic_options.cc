@@ -44,6 +44,14 @@ bool SemanticMapOptions::Validate(std::string* error) const {
     return fail("extraction.occupied_probability must be in (0.5, 1)");
   }
   if (extraction.min_split_frames < 1) return fail("extraction.min_split_frames must be >= 1");
+  if (extraction.merge_gap_cells < 0) return fail("extraction.merge_gap_cells must be >= 0");
+  if (!(extraction.fragment_fraction >= 0.0)) {
+    return fail("extraction.fragment_fraction must be >= 0");
+  }
+  if (!(extraction.merge_center_fraction >= 0.0)) {
+    return fail("extraction.merge_center_fraction must be >= 0");
+  }
+  if (!(extraction.merge_overlap > 0.0)) return fail("extraction.merge_overlap must be positive");
   if (!(chain.doorway_half_width > 0.0)) return fail("chain.doorway_half_width must be positive");
   if (chain.neighbours < 0) return fail("chain.neighbours must not be negative");
   for (const auto& [name, prior] : priors) {

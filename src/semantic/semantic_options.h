@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -22,6 +23,10 @@ struct ClassShapePrior {
 
   // The largest horizontal extent of the shape.
   double Extent() const { return shape == Shape::kBox ? std::max(width, depth) : 2.0 * radius; }
+  // Half the diagonal of the footprint's bounding box (of the square about a circle).
+  double HalfDiagonal() const {
+    return shape == Shape::kBox ? 0.5 * std::hypot(width, depth) : std::sqrt(2.0) * radius;
+  }
 };
 
 // Priors for the ten classes of seed 000 (door, cabinet, bucket, chair, stool, table, sofa,
@@ -96,9 +101,25 @@ struct ObjectExtractionOptions {
   // put this fraction of their cells (and at least min_cells) on both.
   double bridge_fraction = 0.2;
   int min_bridges = 2;
-  // Parts of a class this close (cells) are one object unless min_split_frames frames showed
-  // them as two detections at once.
+  // One object, one entry (object_association.h). Parts of a class that min_split_frames
+  // frames did not show as two detections at once are one object when:
+  // - they lie within 'merge_gap_cells' of each other and the smaller spans less than
+  //   'fragment_fraction' of the class prior's extent: a piece too small to be an object of the
+  //   class (a face cut off by the image edge);
+  // - their fitted centres are closer than 'merge_center_fraction' times the prior's half
+  //   diagonal. Two objects of the class standing side by side have centres at least their
+  //   smaller size apart (footprints do not overlap), which is more than the half diagonal for
+  //   every class not longer than √3 times its depth (a circle: 2 r > √2 r); the longer ones
+  //   (door, sofa, computer, clock) stand side by side along their length. So centres within
+  //   the half diagonal are one object seen twice, e.g. its two sides on two passes of a
+  //   drifting trajectory, whose fits land a drift apart.
+  // - their fitted footprints overlap by at least 'merge_overlap' of the smaller: solid
+  //   objects do not overlap, and the fits of two neighbours overlap only by their errors (the
+  //   prior's size_std, 0.05 m, on each side of a 0.5 m chair: 0.2 of it); above 1: never.
   int merge_gap_cells = 5;
+  double fragment_fraction = 0.5;
+  double merge_center_fraction = 1.0;
+  double merge_overlap = 0.25;
 };
 
 struct ChainOptions {

@@ -1,0 +1,149 @@
+#include "semantic/object_association.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+namespace semchain::semantic {
+namespace {
+
+// 'polygon' relative to 'origin', in single precision for OpenCV (relative, so that maps far
+// from their origin keep millimetres).
+std::vector<cv::Point2f> ToCv(const std::vector<Eigen::Vector2d>& polygon,
+                              const Eigen::Vector2d& origin) {
+  std::vector<cv::Point2f> points;
+  points.reserve(polygon.size());
+  for (const Eigen::Vector2d& p : polygon) {
+    points.emplace_back(static_cast<float>(p.x() - origin.x()),
+                        static_cast<float>(p.y() - origin.y()));
+  }
+  return points;
+}
+
+double Area(const std::vector<Eigen::Vector2d>& polygon) {
+  if (polygon.size() < 3) return 0.0;
+  return cv::contourArea(ToCv(polygon, polygon.front()));
+}
+
+// The radius of the circle about 'shape.center' that holds its footprint.
+double Reach(const FittedShape& shape) {
+  double reach = 0.0;
+  for (const Eigen::Vector2d& p : shape.footprint) {
+    reach = std::max(reach, (p - shape.center).norm());
+  }
+  return reach;
+}
+
+}  // namespace
+
+int FramesTogether(const ObjectPart& a, const ObjectPart& b) {
+  int together = 0;
+  for (int frame : a.frames) together += static_cast<int>(b.frames.count(frame));
+  return together;
+}
+
+double PartExtent(const ObjectPart& part, double resolution) {
+  if (part.cells.empty()) return 0.0;
+  std::vector<cv::Point2f> centers;
+  centers.reserve(part.cells.size());
+  for (const Eigen::Vector2i& cell : part.cells) {
+    centers.emplace_back(static_cast<float>(cell.x()), static_cast<float>(cell.y()));
+  }
+  const cv::RotatedRect box = cv::minAreaRect(centers);
+  // Cell centres span one cell less than the cells do.
+  return (std::max(box.size.width, box.size.height) + 1.0) * resolution;
+}
+
+std::vector<ObjectPart> MergeFragments(std::vector<ObjectPart> parts, const ClassShapePrior& prior,
+                                       double resolution, const ObjectExtractionOptions& options) {
+  const long limit = static_cast<long>(options.merge_gap_cells) * options.merge_gap_cells;
+  const auto near = [limit](const ObjectPart& a, const ObjectPart& b) {
+    for (const Eigen::Vector2i& p : a.cells) {
+      for (const Eigen::Vector2i& q : b.cells) {
+        if ((p - q).cast<long>().squaredNorm() <= limit) return true;
+      }
+    }
+    return false;
+  };
+  const double fragment = options.fragment_fraction * prior.Extent();
+  bool merged = true;
+  while (merged) {
+    merged = false;
+    for (std::size_t i = 0; i < parts.size() && !merged; ++i) {
+      for (std::size_t j = i + 1; j < parts.size() && !merged; ++j) {
+        if (FramesTogether(parts[i], parts[j]) >= options.min_split_frames) continue;
+        if (std::min(PartExtent(parts[i], resolution), PartExtent(parts[j], resolution)) >=
+                fragment ||
+            !near(parts[i], parts[j])) {
+          continue;
+        }
+        parts[i].cells.insert(parts[i].cells.end(), parts[j].cells.begin(), parts[j].cells.end());
+        parts[i].frames.insert(parts[j].frames.begin(), parts[j].frames.end());
+        parts[i].members.insert(parts[i].members.end(), parts[j].members.begin(),
+                                parts[j].members.end());
+        parts.erase(parts.begin() + static_cast<long>(j));
+        merged = true;
+      }
+    }
+  }
+  return parts;
+}
+
+double OverlapArea(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b) {
+  if (a.size() < 3 || b.size() < 3) return 0.0;
+  std::vector<cv::Point2f> intersection;
+  return std::max(
+      0.0f, cv::intersectConvexConvex(ToCv(a, a.front()), ToCv(b, a.front()), intersection, true));
+}
+
+bool SameObject(const FittedShape& a, const FittedShape& b, int together,
+                const ClassShapePrior& prior, const ObjectExtractionOptions& options) {
+  // Two detections in the same frames: the detector saw two objects.
+  if (together >= options.min_split_frames) return false;
+  const double distance = (a.center - b.center).norm();
+  if (distance < options.merge_center_fraction * prior.HalfDiagonal()) return true;
+  if (distance >= Reach(a) + Reach(b)) return false;  // the footprints cannot meet
+  const double smaller = std::min(Area(a.footprint), Area(b.footprint));
+  return smaller > 0.0 && OverlapArea(a.footprint, b.footprint) >= options.merge_overlap * smaller;
+}
+
+std::vector<FittedPart> AssociateParts(std::vector<ObjectPart> parts,
+                                       const std::function<FittedShape(const ObjectPart&)>& fit,
+                                       const ClassShapePrior& prior,
+                                       const ObjectExtractionOptions& options) {
+  std::vector<FittedPart> fitted;
+  fitted.reserve(parts.size());
+  for (ObjectPart& part : parts) {
+    FittedShape shape = fit(part);
+    fitted.push_back({std::move(part), std::move(shape)});
+  }
+  while (true) {
+    std::size_t best_i = 0;
+    std::size_t best_j = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < fitted.size(); ++i) {
+      for (std::size_t j = i + 1; j < fitted.size(); ++j) {
+        const double distance = (fitted[i].shape.center - fitted[j].shape.center).norm();
+        if (distance >= best) continue;
+        if (SameObject(fitted[i].shape, fitted[j].shape,
+                       FramesTogether(fitted[i].part, fitted[j].part), prior, options)) {
+          best = distance;
+          best_i = i;
+          best_j = j;
+        }
+      }
+    }
+    if (!std::isfinite(best)) break;
+    ObjectPart& kept = fitted[best_i].part;
+    ObjectPart& joined = fitted[best_j].part;
+    kept.cells.insert(kept.cells.end(), joined.cells.begin(), joined.cells.end());
+    kept.frames.insert(joined.frames.begin(), joined.frames.end());
+    kept.members.insert(kept.members.end(), joined.members.begin(), joined.members.end());
+    fitted[best_i].shape = fit(kept);
+    fitted.erase(fitted.begin() + static_cast<long>(best_j));
+  }
+  return fitted;
+}
+
+}  // namespace semchain::semantic

@@ -1,0 +1,60 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <set>
+#include <vector>
+
+#include "semantic/semantic_options.h"
+#include "semantic/shape_fit.h"
+
+// One object, one entry (DESIGN.md §3.4): the parts of a class layer that are pieces or views
+// of one object are joined before they become objects. Noise splits one object into several
+// parts: a face cut off by the image edge, the two sides of an object seen on two passes of a
+// trajectory that drifted in between, the cells between them cleared by rays passing beside
+// it. Two neighbours of one class are kept apart by what only two objects give: two detections
+// in the same frames, or two fitted shapes that neither overlap nor stand closer than an
+// object of the class is large.
+namespace semchain::semantic {
+
+// One object's share of a class layer: its cells with evidence and the detections on them.
+struct ObjectPart {
+  std::vector<Eigen::Vector2i> cells;
+  std::set<int> frames;
+  std::vector<std::size_t> members;  // indices of the observations
+};
+
+// How many frames saw both parts (a detection on each).
+int FramesTogether(const ObjectPart& a, const ObjectPart& b);
+
+// The largest extent of the part's cells (metres; cells of 'resolution' metres).
+double PartExtent(const ObjectPart& part, double resolution);
+
+// Joins fragments (ObjectExtractionOptions::merge_gap_cells, fragment_fraction): cell-based,
+// before any shape is fitted, so that a piece too small to be an object joins the object it
+// was cut from.
+std::vector<ObjectPart> MergeFragments(std::vector<ObjectPart> parts, const ClassShapePrior& prior,
+                                       double resolution, const ObjectExtractionOptions& options);
+
+// The area of the intersection of two convex polygons (square metres).
+double OverlapArea(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b);
+
+// Whether two fitted parts of one class are one object (ObjectExtractionOptions::
+// merge_overlap, merge_center_fraction); 'together' is FramesTogether of the parts.
+bool SameObject(const FittedShape& a, const FittedShape& b, int together,
+                const ClassShapePrior& prior, const ObjectExtractionOptions& options);
+
+// A part with its fitted shape.
+struct FittedPart {
+  ObjectPart part;
+  FittedShape shape;
+};
+
+// Joins the parts that SameObject says are one object, closest centres first, refitting each
+// joined part with 'fit' before it is compared again.
+std::vector<FittedPart> AssociateParts(std::vector<ObjectPart> parts,
+                                       const std::function<FittedShape(const ObjectPart&)>& fit,
+                                       const ClassShapePrior& prior,
+                                       const ObjectExtractionOptions& options);
+
+}  // namespace semchain::semantic
