@@ -3,6 +3,8 @@
 // two. The evidence is made as the pipeline makes it: the surface a camera sees of the object,
 // cut to the core of a jittered box, its depth jittered along the ray, and the free space in
 // front of it.
+#include "semantic/object_association.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -218,6 +220,63 @@ std::string Describe(const std::vector<SemanticObject>& objects) {
          << ") seen " << object.observations << "x;";
   }
   return text.str();
+}
+
+// A fitted box of 'width' × 'depth' (axis-aligned) or, with depth 0, a 16-gon circle of radius
+// 'width', centred at (x, y).
+FittedShape Fitted(double x, double y, double width, double depth = 0.0) {
+  FittedShape shape;
+  shape.center = Eigen::Vector2d(x, y);
+  if (depth == 0.0) {
+    for (int i = 0; i < 16; ++i) {
+      const double a = 2.0 * M_PI * i / 16;
+      shape.footprint.push_back(shape.center + width * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    }
+    return shape;
+  }
+  const Eigen::Vector2d h(0.5 * width, 0.5 * depth);
+  shape.footprint = {shape.center - h, shape.center + Eigen::Vector2d(h.x(), -h.y()),
+                     shape.center + h, shape.center + Eigen::Vector2d(-h.x(), h.y())};
+  return shape;
+}
+
+TEST(ObjectAssociationTest, OverlapAreaOfTwoBoxes) {
+  // 0.6 × 0.4 boxes 0.4 m apart along their width share 0.2 × 0.4; far from the map origin too.
+  EXPECT_NEAR(
+      OverlapArea(Fitted(1.0, 1.0, 0.6, 0.4).footprint, Fitted(1.4, 1.0, 0.6, 0.4).footprint), 0.08,
+      1e-6);
+  EXPECT_NEAR(OverlapArea(Fitted(901.0, 501.0, 0.6, 0.4).footprint,
+                          Fitted(901.4, 501.0, 0.6, 0.4).footprint),
+              0.08, 1e-5);
+  EXPECT_EQ(OverlapArea(Fitted(1.0, 1.0, 0.6, 0.4).footprint, Fitted(1.7, 1.0, 0.6, 0.4).footprint),
+            0.0);
+}
+
+TEST(ObjectAssociationTest, SameObjectByOverlapOrCentreUnlessSeenTogether) {
+  const ObjectExtractionOptions options;
+  ClassShapePrior cabinet;  // 0.6 × 0.4: half diagonal 0.36 m
+  cabinet.width = 0.6;
+  cabinet.depth = 0.4;
+  // 0.4 m apart along the width: beyond the half diagonal, but a third of each overlaps.
+  EXPECT_TRUE(
+      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.4, 1.0, 0.6, 0.4), 0, cabinet, options));
+  // The same, seen as two detections in min_split_frames frames: two cabinets.
+  EXPECT_FALSE(SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.4, 1.0, 0.6, 0.4),
+                          options.min_split_frames, cabinet, options));
+  // Side by side, 0.62 m apart: two.
+  EXPECT_FALSE(
+      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.62, 1.0, 0.6, 0.4), 0, cabinet, options));
+  // 0.4 m apart front to back: the footprints only touch, and the centres are beyond the
+  // half diagonal: two.
+  EXPECT_FALSE(
+      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.0, 1.4, 0.6, 0.4), 0, cabinet, options));
+  ClassShapePrior stool;  // radius 0.17: half diagonal 0.24 m
+  stool.shape = ClassShapePrior::Shape::kCircle;
+  stool.radius = 0.17;
+  // 0.22 m apart: within the half diagonal.
+  EXPECT_TRUE(SameObject(Fitted(1.0, 1.0, 0.17), Fitted(1.22, 1.0, 0.17), 0, stool, options));
+  // 0.36 m apart: apart.
+  EXPECT_FALSE(SameObject(Fitted(1.0, 1.0, 0.17), Fitted(1.36, 1.0, 0.17), 0, stool, options));
 }
 
 // Frames from viewers on an arc of 'distance' around 'target', from 'from' to 'to' radians.
