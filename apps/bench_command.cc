@@ -488,9 +488,11 @@ void AddBenchSlam(CLI::App& bench, int& exit_code) {
 
 void AddBenchCommand(CLI::App& app, int& exit_code) {
   CLI::App* bench = app.add_subcommand(
-      "bench", "Benchmarks: slam, localize (real logs), reloc (simulated relocalization trials)");
+      "bench",
+      "Benchmarks: slam, closures, localize (real logs), reloc (simulated relocalization trials)");
   bench->require_subcommand(1);
   AddBenchSlam(*bench, exit_code);
+  AddBenchClosures(*bench, exit_code);
   AddBenchLocalize(*bench, exit_code);
   AddBenchReloc(*bench, exit_code);
   AddBenchDetector(*bench, exit_code);

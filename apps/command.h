@@ -25,6 +25,8 @@ void AddBagCommand(CLI::App& app, int& exit_code);
 void AddBenchLocalize(CLI::App& bench, int& exit_code);
 // `bench reloc` (bench_reloc_command.cc), registered by AddBenchCommand.
 void AddBenchReloc(CLI::App& bench, int& exit_code);
+// `bench closures` (bench_closures_command.cc), registered by AddBenchCommand.
+void AddBenchClosures(CLI::App& bench, int& exit_code);
 // `bench detector` (bench_detector_command.cc), registered by AddBenchCommand.
 void AddBenchDetector(CLI::App& bench, int& exit_code);
 
