@@ -21,11 +21,14 @@ namespace semchain::ros1 {
 namespace {
 
 constexpr std::uint32_t kQueue = 10;
+// Scans waiting in the subscriber, and for tf in the filter (amcl's 100).
+constexpr std::uint32_t kAmclScanQueue = 100;
 
 }  // namespace
 
 Result<std::unique_ptr<LocalizationNode>> LocalizationNode::Create(::ros::NodeHandle nh,
-                                                                   ::ros::NodeHandle private_nh) {
+                                                                   ::ros::NodeHandle private_nh,
+                                                                   const NodeMode& mode) {
   Result<LocalizationNodeParameters> parameters = ReadLocalizationNodeParameters(private_nh);
   if (!parameters.ok()) return parameters.status();
   Result<semantic::MapFolder> folder = semantic::ReadMapFolder(parameters->map);
@@ -49,7 +52,7 @@ Result<std::unique_ptr<LocalizationNode>> LocalizationNode::Create(::ros::NodeHa
   if (!detector.ok()) return detector.status();
   std::unique_ptr<LocalizationNode> node(new LocalizationNode(
       nh, private_nh, std::move(*parameters), std::move(map), std::move(*detector)));
-  node->Start();
+  node->Start(mode);
   return node;
 }
 
@@ -69,11 +72,12 @@ LocalizationNode::LocalizationNode(::ros::NodeHandle nh, ::ros::NodeHandle priva
       rgbd_(detector_.get()) {}
 
 LocalizationNode::~LocalizationNode() {
+  if (detector_thread_) detector_thread_->Stop();
   const Status written = WriteStats();
   if (!written.ok()) ROS_ERROR("%s", written.message().c_str());
 }
 
-void LocalizationNode::Start() {
+void LocalizationNode::Start(const NodeMode& mode) {
   pose_publisher_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("amcl_pose", 2, true);
   particles_publisher_ = nh_.advertise<geometry_msgs::PoseArray>("particlecloud", 2, true);
   map_publisher_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
@@ -85,23 +89,34 @@ void LocalizationNode::Start() {
   map_publisher_.publish(grid);
   PublishObjects();
 
-  scan_subscriber_ = nh_.subscribe("scan", kQueue, &LocalizationNode::OnScan, this);
+  scan_input_ = std::make_unique<ScanInput>(
+      nh_, "scan", kAmclScanQueue, tf_buffer_, parameters_.frames.odom_frame_id,
+      [this](const sensor_msgs::LaserScanConstPtr& scan, const ScanArrival& arrival) {
+        OnScan(scan, arrival);
+      });
   initial_pose_subscriber_ =
       nh_.subscribe("initialpose", 2, &LocalizationNode::OnInitialPose, this);
   if (localization::IsSemanticMethod(localizer_.method())) {
-    camera_info_subscriber_ =
-        nh_.subscribe("camera/color/camera_info", 2, &LocalizationNode::OnCameraInfo, this);
     if (detector_) {
+      // camera_info on the detector's thread too: the camera is used there only.
+      detector_thread_ = std::make_unique<DetectorThread>(nh_);
+      ::ros::NodeHandle& camera_nh = detector_thread_->nh();
+      camera_info_subscriber_ =
+          camera_nh.subscribe("camera/color/camera_info", 2, &LocalizationNode::OnCameraInfo, this);
       color_subscriber_ =
-          nh_.subscribe("camera/color/image_raw", 2, &LocalizationNode::OnColorImage, this);
+          camera_nh.subscribe("camera/color/image_raw", 2, &LocalizationNode::OnColorImage, this);
       depth_subscriber_ =
-          nh_.subscribe("camera/depth/image_raw", 2, &LocalizationNode::OnDepthImage, this);
+          camera_nh.subscribe("camera/depth/image_raw", 2, &LocalizationNode::OnDepthImage, this);
+      detector_thread_->Start();
     } else {
+      camera_info_subscriber_ =
+          nh_.subscribe("camera/color/camera_info", 2, &LocalizationNode::OnCameraInfo, this);
       detections_subscriber_ =
           nh_.subscribe("semchain/detections", kQueue, &LocalizationNode::OnDetections, this);
     }
   }
   if (parameters_.has_initial_pose) {
+    const std::lock_guard<std::mutex> lock(mutex_);
     const Eigen::Vector3d cov(parameters_.initial_cov[0], parameters_.initial_cov[1],
                               parameters_.initial_cov[2]);
     localizer_.SetInitialPose(Pose2(parameters_.initial_pose[0], parameters_.initial_pose[1],
@@ -112,34 +127,48 @@ void LocalizationNode::Start() {
   // registered with the master.
   global_localization_service_ =
       nh_.advertiseService("global_localization", &LocalizationNode::OnGlobalLocalization, this);
-  ROS_INFO("semchain_ros: %s on %s (%zu objects, %zu chains)", parameters_.method.c_str(),
-           parameters_.map.c_str(), map_->semantic.objects.size(), map_->semantic.chains.size());
+  const std::string objects =
+      !localization::IsSemanticMethod(localizer_.method()) ? "none (laser only)"
+      : detector_ ? "detector " + DescribeNodeDetector(parameters_.detector, *detector_)
+                  : std::string("/semchain/detections");
+  ROS_INFO("semchain_ros: %s, method %s, map %s (%zu objects, %zu chains), objects: %s, %s%s",
+           mode.Describe().c_str(), parameters_.method.c_str(), parameters_.map.c_str(),
+           map_->semantic.objects.size(), map_->semantic.chains.size(), objects.c_str(),
+           DescribeLocalizationParameters(parameters_).c_str(),
+           ::ros::Time::isSimTime() ? ", use_sim_time" : "");
 }
 
-void LocalizationNode::OnScan(const sensor_msgs::LaserScanConstPtr& message) {
-  const ::ros::WallTime arrival = ::ros::WallTime::now();
+void LocalizationNode::OnScan(const sensor_msgs::LaserScanConstPtr& message,
+                              const ScanArrival& arrival) {
   const std::optional<StampedScan> scan =
       ScanWithOdometry(tf_buffer_, *message, parameters_.frames);
   if (!scan) {
     ++timings_.dropped_scans;
     return;
   }
-  const ::ros::WallTime odometry_known = ::ros::WallTime::now();
-
+  const std::lock_guard<std::mutex> lock(mutex_);
   const double cpu_start = ThreadCpuSeconds();
   const int iterations = localizer_.AddScan(*scan);
   timings_.cpu_ms.push_back(1000.0 * (ThreadCpuSeconds() - cpu_start));
-  Publish(message->header.stamp, scan->odometry, iterations > 0);
-  const ::ros::WallTime published = ::ros::WallTime::now();
-  timings_.latency_ms.push_back(1000.0 * (published - arrival).toSec());
-  timings_.processing_ms.push_back(1000.0 * (published - odometry_known).toSec());
   NoteState();
+  const bool pose_published = Publish(message->header.stamp, scan->odometry, iterations > 0);
+  const ::ros::WallTime published = ::ros::WallTime::now();
+  const double latency_ms = 1000.0 * (published - arrival.arrived).toSec();
+  timings_.latency_ms.push_back(latency_ms);
+  if (pose_published) timings_.pose_latency_ms.push_back(latency_ms);
+  timings_.tf_wait_ms.push_back(1000.0 * (arrival.released - arrival.arrived).toSec());
+  timings_.processing_ms.push_back(1000.0 * (published - arrival.released).toSec());
 }
 
-void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
+bool LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
                                bool filter_updated) {
   const std::optional<Pose2>& pose = localizer_.pose();
-  if (pose) {
+  bool pose_published = false;
+  if (pose) ++timings_.scans_with_pose;
+  // As amcl: the pose goes out when the filter updated (or is forced), the last map → odom is
+  // sent again after every scan.
+  if (pose && (filter_updated || force_pose_ || parameters_.publish_pose_every_scan)) {
+    force_pose_ = false;
     geometry_msgs::PoseWithCovarianceStamped message;
     message.header.stamp = stamp;
     message.header.frame_id = parameters_.frames.global_frame_id;
@@ -152,6 +181,8 @@ void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
         message.pose.covariance[6 * index[r] + index[c]] = covariance(r, c);
     }
     pose_publisher_.publish(message);
+    pose_published = true;
+    ++timings_.poses_published;
 
     // map → odom such that map → odom → base_link is the pose, future-dated as amcl does so
     // that consumers can use it until the next scan.
@@ -176,6 +207,7 @@ void LocalizationNode::Publish(const ::ros::Time& stamp, const Pose2& odometry,
     particles_publisher_.publish(cloud);
   }
   if (localizer_.hypotheses().size() != published_hypotheses_) PublishObjects();
+  return pose_published;
 }
 
 void LocalizationNode::PublishObjects() {
@@ -191,6 +223,7 @@ void LocalizationNode::NoteState() {
   const localization::LocalizerState state = localizer_.state();
   if (state == last_state_) return;
   last_state_ = state;
+  force_pose_ = true;
   if (localizer_.pose()) {
     const Pose2& p = *localizer_.pose();
     ROS_INFO("semchain_ros: %s at (%.2f, %.2f, %.1f deg)", localization::LocalizerStateName(state),
@@ -208,6 +241,7 @@ void LocalizationNode::AddFrame(double stamp, std::vector<Detection> detections,
                                 const cv::Mat& color) {
   const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
   if (!camera) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
   localizer_.AddFrame({stamp, std::move(detections), *camera, color, {}});
 }
 
@@ -242,12 +276,15 @@ void LocalizationNode::OnInitialPose(
   Eigen::Matrix3d covariance;
   covariance << c[0], c[1], c[5], c[6], c[7], c[11], c[30], c[31], c[35];
   const Pose2 pose = PlanarPose(ToIsometry(message->pose.pose));
+  const std::lock_guard<std::mutex> lock(mutex_);
   localizer_.SetInitialPose(pose, covariance);
+  force_pose_ = true;
   ROS_INFO("semchain_ros: initial pose (%.2f, %.2f, %.1f deg)", pose.x, pose.y,
            pose.theta * 180.0 / M_PI);
 }
 
 bool LocalizationNode::OnGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   localizer_.RelocalizeGlobally();
   map_from_odom_.reset();
   ROS_INFO("semchain_ros: global localization requested");
@@ -258,15 +295,21 @@ bool LocalizationNode::OnGlobalLocalization(std_srvs::Empty::Request&, std_srvs:
 Status LocalizationNode::WriteStats() const {
   if (parameters_.stats_file.empty()) return Status::Ok();
   const localization::LocalizerStatistics& statistics = localizer_.statistics();
-  nlohmann::json stats = {{"method", parameters_.method},
-                          {"scans", statistics.scans},
-                          {"dropped_scans", timings_.dropped_scans},
-                          {"iterations", statistics.iterations},
-                          {"prelocalizations", statistics.prelocalizations},
-                          {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
-                          {"latency_ms", Spread(timings_.latency_ms)},
-                          {"processing_ms", Spread(timings_.processing_ms)},
-                          {"state", localization::LocalizerStateName(localizer_.state())}};
+  nlohmann::json stats = {
+      {"method", parameters_.method},
+      {"scans", statistics.scans},
+      {"dropped_scans", timings_.dropped_scans + (scan_input_ ? scan_input_->dropped() : 0)},
+      {"scans_with_pose", timings_.scans_with_pose},
+      {"poses_published", timings_.poses_published},
+      {"publish_pose_every_scan", parameters_.publish_pose_every_scan},
+      {"iterations", statistics.iterations},
+      {"prelocalizations", statistics.prelocalizations},
+      {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
+      {"latency_ms", Spread(timings_.latency_ms)},
+      {"pose_latency_ms", Spread(timings_.pose_latency_ms)},
+      {"tf_wait_ms", Spread(timings_.tf_wait_ms)},
+      {"processing_ms", Spread(timings_.processing_ms)},
+      {"state", localization::LocalizerStateName(localizer_.state())}};
   if (localizer_.pose()) {
     stats["pose"] = {localizer_.pose()->x, localizer_.pose()->y, localizer_.pose()->theta};
   }

@@ -31,7 +31,8 @@ void Warn(const std::string& line) { ROS_WARN("semchain_ros: %s", line.c_str());
 }  // namespace
 
 Result<std::unique_ptr<MappingNode>> MappingNode::Create(::ros::NodeHandle nh,
-                                                         ::ros::NodeHandle private_nh) {
+                                                         ::ros::NodeHandle private_nh,
+                                                         const NodeMode& mode) {
   Result<MappingNodeParameters> parameters = ReadMappingNodeParameters(private_nh);
   if (!parameters.ok()) return parameters.status();
   Result<std::unique_ptr<detection::YoloDetector>> detector =
@@ -39,7 +40,7 @@ Result<std::unique_ptr<MappingNode>> MappingNode::Create(::ros::NodeHandle nh,
   if (!detector.ok()) return detector.status();
   std::unique_ptr<MappingNode> node(
       new MappingNode(nh, std::move(*parameters), std::move(*detector)));
-  node->Start();
+  node->Start(mode);
   return node;
 }
 
@@ -56,18 +57,33 @@ MappingNode::MappingNode(::ros::NodeHandle nh, MappingNodeParameters parameters,
 
 MappingNode::~MappingNode() { Shutdown(); }
 
-void MappingNode::Start() {
+namespace {
+
+// How long the save service waits for the frames the detector is still working on.
+constexpr double kDetectorDrainSeconds = 10.0;
+
+}  // namespace
+
+void MappingNode::Start(const NodeMode& mode) {
   map_publisher_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
   objects_publisher_ = nh_.advertise<visualization_msgs::MarkerArray>("semchain/objects", 1, true);
-  scan_subscriber_ = nh_.subscribe("scan", kScanQueue, &MappingNode::OnScan, this);
-  camera_info_subscriber_ =
-      nh_.subscribe("camera/color/camera_info", 2, &MappingNode::OnCameraInfo, this);
+  scan_input_ = std::make_unique<ScanInput>(
+      nh_, "scan", kScanQueue, tf_buffer_, parameters_.frames.odom_frame_id,
+      [this](const sensor_msgs::LaserScanConstPtr& scan, const ScanArrival&) { OnScan(scan); });
   if (detector_) {
-    color_subscriber_ =
-        nh_.subscribe("camera/color/image_raw", kFrameQueue, &MappingNode::OnColorImage, this);
-    depth_subscriber_ =
-        nh_.subscribe("camera/depth/image_raw", kFrameQueue, &MappingNode::OnDepthImage, this);
+    // camera_info on the detector's thread too: the camera is used there only.
+    detector_thread_ = std::make_unique<DetectorThread>(nh_);
+    ::ros::NodeHandle& camera_nh = detector_thread_->nh();
+    camera_info_subscriber_ =
+        camera_nh.subscribe("camera/color/camera_info", 2, &MappingNode::OnCameraInfo, this);
+    color_subscriber_ = camera_nh.subscribe("camera/color/image_raw", kFrameQueue,
+                                            &MappingNode::OnColorImage, this);
+    depth_subscriber_ = camera_nh.subscribe("camera/depth/image_raw", kFrameQueue,
+                                            &MappingNode::OnDepthImage, this);
+    detector_thread_->Start();
   } else {
+    camera_info_subscriber_ =
+        nh_.subscribe("camera/color/camera_info", 2, &MappingNode::OnCameraInfo, this);
     detections_subscriber_ =
         nh_.subscribe("semchain/detections", kFrameQueue, &MappingNode::OnDetections, this);
     if (parameters_.keyframe_images) {
@@ -84,17 +100,22 @@ void MappingNode::Start() {
     ROS_ERROR("semchain_ros: ~out %s: %s; mapping anyway, saving will fail",
               parameters_.out.c_str(), writable.message().c_str());
   }
-  ROS_INFO("semchain_ros: mapping (%d particles, %.3f m cells) into %s",
-           parameters_.slam.rbpf.particles, parameters_.slam.rbpf.grid.resolution_meters,
-           parameters_.out.c_str());
+  const std::string objects =
+      detector_ ? "detector " + DescribeNodeDetector(parameters_.detector, *detector_)
+                : std::string("/semchain/detections");
+  ROS_INFO("semchain_ros: %s, out %s, objects: %s, %s%s", mode.Describe().c_str(),
+           parameters_.out.c_str(), objects.c_str(), DescribeMappingParameters(parameters_).c_str(),
+           ::ros::Time::isSimTime() ? ", use_sim_time" : "");
 }
 
 bool MappingNode::Acceptable(const StampedScan& scan) const {
   if (slam_.size() == 0) return true;
   const StampedScan& last = slam_.scans().back();
-  if (scan.scan.timestamp < last.scan.timestamp) {
+  // A scan stamped as the last one is the same scan again: the tf filter releases an old scan
+  // sent again at once (tf knows its stamp) while the newer one before it still waits for tf.
+  if (scan.scan.timestamp <= last.scan.timestamp) {
     ROS_WARN_THROTTLE(5.0,
-                      "semchain_ros: scan at %.3f s is older than the last one (%.3f s): "
+                      "semchain_ros: scan at %.3f s is not newer than the last one (%.3f s): "
                       "out of time order, skipped",
                       scan.scan.timestamp, last.scan.timestamp);
     return false;
@@ -134,6 +155,7 @@ void MappingNode::OnScan(const sensor_msgs::LaserScanConstPtr& message) {
 void MappingNode::Feed(const StampedScan& scan) {
   const mapping::SlamStep step = slam_.AddScan(scan);
   trajectory_ = slam_.Trajectory();
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (!semantic_) return;
   // As `slam --semantic` does: frames wait for a pose; a filter update may move mapped ones.
   if (!step.processed && semantic_->next_stamp() > scan.scan.timestamp) return;
@@ -158,6 +180,7 @@ void MappingNode::PublishMap(const ::ros::Time& stamp) {
   grid.header.stamp = stamp;
   grid.info.map_load_time = stamp;
   map_publisher_.publish(grid);
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (!semantic_ || semantic_->mapped_frames() == 0) return;
   const semantic::SemanticMappingResult current = semantic_->Current(trajectory_, image);
   visualization_msgs::MarkerArray markers =
@@ -174,6 +197,7 @@ void MappingNode::PublishMap(const ::ros::Time& stamp) {
 void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
   const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
   if (!camera) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (!semantic_) {
     // The semantic grid numbers its cells on the SLAM grid's lattice (cells from the origin).
     semantic::GridGeometry lattice;
@@ -199,6 +223,7 @@ void MappingNode::OnDetections(const std_msgs::StringConstPtr& message) {
     return;
   }
   if (parameters_.keyframe_images && !frame->detections.empty()) {
+    const std::lock_guard<std::mutex> lock(mutex_);
     keyframe_images_.AddFrame(frame->frame, frame->stamp);
   }
   AddFrame(std::move(*frame), cv::Mat());
@@ -210,6 +235,7 @@ void MappingNode::OnKeyframeImage(const sensor_msgs::ImageConstPtr& message) {
     ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
     return;
   }
+  const std::lock_guard<std::mutex> lock(mutex_);
   keyframe_images_.AddImage(message->header.stamp.toSec(), *rgb);
 }
 
@@ -227,13 +253,16 @@ void MappingNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
 
 void MappingNode::AddDetectedFrame(std::optional<RgbdDetections> detected) {
   if (!detected) return;
-  timings_.detect_ms.push_back(detected->detect_ms);
   FrameDetections frame;
   frame.frame = detected->frame;
   frame.stamp = detected->stamp;
   frame.detections = std::move(detected->detections);
-  if (parameters_.keyframe_images && !frame.detections.empty()) {
-    keyframe_images_.AddFrameImage(frame.frame, detected->color);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    timings_.detect_ms.push_back(detected->detect_ms);
+    if (parameters_.keyframe_images && !frame.detections.empty()) {
+      keyframe_images_.AddFrameImage(frame.frame, detected->color);
+    }
   }
   AddFrame(std::move(frame), detected->depth_m);
 }
@@ -246,7 +275,14 @@ Status MappingNode::Save() {
   contents.trajectory = result.trajectory;
   semantic::SemanticMappingResult mapped;
   mapped.map.classes = DefaultClassNames();
-  if (semantic_) mapped = semantic_->Current(result.trajectory, contents.occupancy);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (semantic_) {
+    // Frames the detector handed over after the last scan's step wait for a pose still: those
+    // within the trajectory are mapped now.
+    const Status advanced = semantic_->Advance(result.trajectory, false, {});
+    if (!advanced.ok()) return advanced;
+    mapped = semantic_->Current(result.trajectory, contents.occupancy);
+  }
   // No run folder holds the frames: the keyframes' images are saved in the map folder itself
   // ("run": "."), those of keyframes without an image left out, and keyframes.json is written
   // after them (which keyframes it lists is known only then); with no image at all the folder
@@ -279,6 +315,13 @@ Status MappingNode::Save() {
 }
 
 bool MappingNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  // The frames queued for the detector before the call go into the map.
+  if (detector_thread_ && !detector_thread_->Drain(kDetectorDrainSeconds)) {
+    ROS_WARN(
+        "semchain_ros: save_map: the detector still works on frames after %.0f s; saving "
+        "without them",
+        kDetectorDrainSeconds);
+  }
   const Status saved = Save();
   response.success = saved.ok();
   response.message = saved.ok() ? parameters_.out : saved.message();
@@ -289,6 +332,8 @@ bool MappingNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
 void MappingNode::Shutdown() {
   if (shut_down_) return;
   shut_down_ = true;
+  // Nothing runs beside what follows (roscpp has dropped the callbacks still queued).
+  if (detector_thread_) detector_thread_->Stop();
   // A map saved since the last scan and frame is what a save now would write (the final passes
   // take seconds).
   const bool saved_already = saved_at_ == std::pair(slam_.size(), MappedFrames());
@@ -309,7 +354,7 @@ Status MappingNode::WriteStats() const {
       {"mode", "mapping"},
       {"scans", slam_.size()},
       {"processed", slam_.filter().statistics().processed},
-      {"dropped_scans", timings_.dropped_scans},
+      {"dropped_scans", timings_.dropped_scans + (scan_input_ ? scan_input_->dropped() : 0)},
       {"rejected_scans", timings_.rejected_scans},
       {"frames_mapped", MappedFrames()},
       {"frames_skipped", semantic_ ? semantic_->skipped_frames() : 0},

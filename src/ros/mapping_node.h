@@ -11,6 +11,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -18,8 +19,11 @@
 #include "core/status.h"
 #include "detection/yolo_detector.h"
 #include "mapping/incremental_slam.h"
+#include "ros/detector_thread.h"
 #include "ros/mapping_parameters.h"
 #include "ros/node_inputs.h"
+#include "ros/node_mode.h"
+#include "ros/scan_input.h"
 #include "semantic/keyframe_images.h"
 #include "semantic/live_semantic_run.h"
 
@@ -29,6 +33,8 @@
 //   subscribes  /scan, tf odom → base_link (laser and camera frames from tf),
 //               /camera/color/camera_info, /semchain/detections (one detections.jsonl record
 //               per message) or, with ~detector, /camera/color/image_raw + /camera/depth/image_raw
+//               (the detector runs on a thread of its own, DetectorThread: scans never wait for
+//               it; its frames reach the semantic mapper in stamp order)
 //   publishes   latched /map every ~map_update_interval s of scan time, tf map → odom (the best
 //               particle's pose ∘ odometry⁻¹) after every scan, /semchain/objects with /map
 //   offers      /semchain/save_map (std_srvs/Trigger): the map folder to ~out, atomically; the
@@ -38,8 +44,8 @@ namespace semchain::ros1 {
 struct MappingTimings {
   std::vector<double> cpu_ms;     // thread CPU per scan: SLAM and the semantic mapper
   std::vector<double> detect_ms;  // wall time of ~detector per camera frame
-  int dropped_scans = 0;          // no odometry (tf) for them in time
-  int rejected_scans = 0;         // out of time order
+  int dropped_scans = 0;          // no odometry (tf) for them
+  int rejected_scans = 0;         // out of time order, or repeated
   double first_stamp = -1.0;      // scan time span, for the real-time factor
   double last_stamp = -1.0;
   double wall_seconds = 0.0;  // wall time from the first scan to the last
@@ -48,14 +54,17 @@ struct MappingTimings {
 class MappingNode {
  public:
   // Reads the parameters and loads the detector; an error names the parameter or file.
+  // 'mode' is for the start-up line.
   static Result<std::unique_ptr<MappingNode>> Create(::ros::NodeHandle nh,
-                                                     ::ros::NodeHandle private_nh);
+                                                     ::ros::NodeHandle private_nh,
+                                                     const NodeMode& mode);
   ~MappingNode();
   MappingNode(const MappingNode&) = delete;
   MappingNode& operator=(const MappingNode&) = delete;
 
   // Writes the map folder to ~out (the final SLAM passes, the semantic map on them); nothing
-  // is written when there is no scan yet or on error (the error says why).
+  // is written when there is no scan yet or on error (the error says why). Frames the detector
+  // has not handed over yet are not in it (the save service waits for them first).
   Status Save();
   // What the node does when it stops: saves (~save_on_shutdown) and writes ~stats_file.
   void Shutdown();
@@ -63,7 +72,7 @@ class MappingNode {
  private:
   MappingNode(::ros::NodeHandle nh, MappingNodeParameters parameters,
               std::unique_ptr<detection::YoloDetector> detector);
-  void Start();
+  void Start(const NodeMode& mode);
 
   void OnScan(const sensor_msgs::LaserScanConstPtr& message);
   void OnDetections(const std_msgs::StringConstPtr& message);
@@ -74,31 +83,41 @@ class MappingNode {
   void OnDepthImage(const sensor_msgs::ImageConstPtr& message);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
 
-  // Whether 'scan' can follow the scans before it (time order; any beam geometry); warns when
-  // not.
+  // Whether 'scan' can follow the scans before it (newer than the last; any beam geometry);
+  // warns when not.
   bool Acceptable(const StampedScan& scan) const;
   void Feed(const StampedScan& scan);
+  // Gives the semantic mapper a frame (on the thread of its source: the detector's or the main
+  // one).
   void AddFrame(FrameDetections frame, const cv::Mat& depth_m);
   void AddDetectedFrame(std::optional<RgbdDetections> detected);
   void PublishTransform(const ::ros::Time& stamp, const Pose2& pose, const Pose2& odometry);
   void PublishMap(const ::ros::Time& stamp);
-  int MappedFrames() const;
+  int MappedFrames() const;  // with mutex_ held (or the detector's thread stopped)
   Status WriteStats() const;
 
   ::ros::NodeHandle nh_;
   const MappingNodeParameters parameters_;
   std::unique_ptr<detection::YoloDetector> detector_;
   mapping::IncrementalSlam slam_;
-  std::unique_ptr<semantic::LiveSemanticRun> semantic_;  // once the camera is known
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
+  // Used on the thread of the frames' source only (camera_info comes on the same queue).
   CameraTracker camera_;
   RgbdDetector rgbd_;
+  // Guards what the detector's thread shares with the main queue's callbacks: the semantic
+  // mapper, the keyframes' images and the detector's timings. SLAM is the main queue's alone.
+  std::mutex mutex_;
+  std::unique_ptr<semantic::LiveSemanticRun> semantic_;  // once the camera is known
   semantic::KeyframeImages keyframe_images_;
 
-  ::ros::Subscriber scan_subscriber_;
+  // With ~detector: the camera's subscriptions are served here (declared before them, so that
+  // it outlives them; stopped first thing when the node shuts down).
+  std::unique_ptr<DetectorThread> detector_thread_;
+
+  std::unique_ptr<ScanInput> scan_input_;
   ::ros::Subscriber detections_subscriber_;
   ::ros::Subscriber camera_info_subscriber_;
   ::ros::Subscriber color_subscriber_;  // the detector's input, or the keyframes' images

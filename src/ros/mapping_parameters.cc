@@ -1,5 +1,7 @@
 #include "ros/mapping_parameters.h"
 
+#include <cstdio>
+
 #include "mapping/slam_options_io.h"
 #include "ros/parameter_reader.h"
 
@@ -85,6 +87,24 @@ Result<MappingNodeParameters> ReadMappingNodeParameters(const ::ros::NodeHandle&
   std::string error;
   if (!p.slam.Validate(&error)) return Status::Error("SLAM parameters: " + error);
   return p;
+}
+
+std::string DescribeMappingParameters(const MappingNodeParameters& p) {
+  const mapping::RbpfOptions& rbpf = p.slam.rbpf;
+  char line[512];
+  std::snprintf(
+      line, sizeof(line),
+      "slam_config %s, particles %d, delta %.3g m, maxUrange %.3g m, linearUpdate %.3g m, "
+      "angularUpdate %.3g rad, resampleThreshold %.3g, map_update_interval %.3g s, "
+      "frames %s/%s/%s, keyframe_images %s, save_on_shutdown %s, seed %llu, threads %d",
+      p.slam_config.empty() ? "(defaults)" : p.slam_config.c_str(), rbpf.particles,
+      rbpf.grid.resolution_meters, rbpf.scan.max_range_meters, rbpf.linear_update_meters,
+      rbpf.angular_update_radians, rbpf.resample_threshold, p.map_update_interval,
+      p.frames.global_frame_id.c_str(), p.frames.odom_frame_id.c_str(),
+      p.frames.base_frame_id.c_str(), p.keyframe_images ? "true" : "false",
+      p.save_on_shutdown ? "true" : "false", static_cast<unsigned long long>(rbpf.seed),
+      rbpf.threads);
+  return line;
 }
 
 }  // namespace semchain::ros1

@@ -35,4 +35,7 @@ struct MappingNodeParameters {
 // Reads and validates the parameters; an error names the parameter.
 Result<MappingNodeParameters> ReadMappingNodeParameters(const ::ros::NodeHandle& private_nh);
 
+// The parameters in force, for the node's start-up line ("particles ..., delta ..., ...").
+std::string DescribeMappingParameters(const MappingNodeParameters& parameters);
+
 }  // namespace semchain::ros1

@@ -39,7 +39,7 @@ std::optional<StampedScan> ScanWithOdometry(const tf2_ros::Buffer& buffer,
                                             const sensor_msgs::LaserScan& message,
                                             const NodeFrames& frames) {
   const std::optional<geometry_msgs::TransformStamped> odom_from_base = LookUpTransform(
-      buffer, frames.odom_frame_id, frames.base_frame_id, message.header.stamp, frames.tf_wait);
+      buffer, frames.odom_frame_id, frames.base_frame_id, message.header.stamp, 0.0);
   // The laser's mounting is static: the latest transform is its transform.
   const std::optional<geometry_msgs::TransformStamped> base_from_laser =
       LookUpTransform(buffer, frames.base_frame_id, message.header.frame_id, ::ros::Time(0), 0.0);
@@ -175,6 +175,13 @@ std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& mes
 Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model) {
   if (model.empty()) return std::unique_ptr<detection::YoloDetector>();
   return detection::LoadYoloDetector(model, "", detection::YoloOptions());
+}
+
+std::string DescribeNodeDetector(const std::string& model,
+                                 const detection::YoloDetector& detector) {
+  const cv::Size input = detector.options().input_size();
+  return model + " (input " + std::to_string(input.width) + "x" + std::to_string(input.height) +
+         ", " + std::to_string(detector.class_names().size()) + " classes)";
 }
 
 nlohmann::json Spread(std::vector<double> values) {

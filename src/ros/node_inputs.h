@@ -30,7 +30,9 @@ struct NodeFrames {
   std::string base_frame_id = "base_link";
   std::string odom_frame_id = "odom";
   std::string global_frame_id = "map";
-  double tf_wait = 0.5;  // ~tf_wait: s a scan waits for odom → base_link
+  // ~tf_wait: s (wall time) the camera's mounting is waited for in tf. Scans wait for their
+  // odometry in ScanInput's filter instead, as long as its queue allows.
+  double tf_wait = 0.5;
 };
 
 // target_from_source at 'stamp' (waiting up to 'wait' seconds); unknown: a throttled warning.
@@ -41,7 +43,8 @@ std::optional<geometry_msgs::TransformStamped> LookUpTransform(const tf2_ros::Bu
                                                                double wait);
 
 // 'message' with the odometry (tf odom → base_link at its stamp) and the laser's mounting
-// (base → the scan's frame, static); nullopt when tf does not know them in time.
+// (base → the scan's frame, static), looked up without waiting (ScanInput releases a scan once
+// tf knows them); nullopt with a throttled warning when tf does not know them.
 std::optional<StampedScan> ScanWithOdometry(const tf2_ros::Buffer& buffer,
                                             const sensor_msgs::LaserScan& message,
                                             const NodeFrames& frames);
@@ -100,6 +103,8 @@ class RgbdDetector {
 
 // ~detector's model (no detector, null, when 'model' is empty); the error names the file.
 Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model);
+// "M.onnx (input 320x256, 10 classes)", for the start-up line.
+std::string DescribeNodeDetector(const std::string& model, const detection::YoloDetector& detector);
 
 // Mean, median, 95th percentile and maximum of 'values' as JSON (null when empty).
 nlohmann::json Spread(std::vector<double> values);

@@ -1,6 +1,7 @@
 #include "ros/node_parameters.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "ros/parameter_reader.h"
 
@@ -40,6 +41,7 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
   SEMCHAIN_RETURN_IF_ERROR(ReadNodeFrames(nh, &p.frames));
   SEMCHAIN_RETURN_IF_ERROR(ReadDouble(nh, "transform_tolerance", &p.transform_tolerance));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "tf_broadcast", &p.tf_broadcast));
+  SEMCHAIN_RETURN_IF_ERROR(Read(nh, "publish_pose_every_scan", &p.publish_pose_every_scan));
 
   const char* const kPoseNames[3] = {"initial_pose_x", "initial_pose_y", "initial_pose_a"};
   const char* const kCovNames[3] = {"initial_cov_xx", "initial_cov_yy", "initial_cov_aa"};
@@ -111,6 +113,24 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
     return Status::Error("parameters ~transform_tolerance must be >= 0, ~camera_max_range > 0");
   }
   return p;
+}
+
+std::string DescribeLocalizationParameters(const LocalizationNodeParameters& p) {
+  const localization::AmclOptions& a = p.amcl;
+  char line[512];
+  std::snprintf(
+      line, sizeof(line),
+      "particles %d-%d, laser %s %d beams, update_min_d %.3g m, update_min_a %.3g rad, "
+      "resample_interval %d, odom_alpha1-4 %.3g %.3g %.3g %.3g, frames %s/%s/%s, "
+      "transform_tolerance %.3g s, /amcl_pose %s, seed %llu",
+      a.min_particles, a.max_particles,
+      a.laser_model_type == localization::LaserModelType::kBeam ? "beam" : "likelihood_field",
+      a.max_beams, a.update_min_d, a.update_min_a, a.resample_interval, a.alpha1, a.alpha2,
+      a.alpha3, a.alpha4, p.frames.global_frame_id.c_str(), p.frames.odom_frame_id.c_str(),
+      p.frames.base_frame_id.c_str(), p.transform_tolerance,
+      p.publish_pose_every_scan ? "after every scan" : "on filter updates",
+      static_cast<unsigned long long>(p.localizer.seed));
+  return line;
 }
 
 }  // namespace semchain::ros1

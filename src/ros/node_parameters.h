@@ -28,6 +28,10 @@ struct LocalizationNodeParameters {
   NodeFrames frames;                 // ~base_frame_id, ~odom_frame_id, ~global_frame_id, ~tf_wait
   double transform_tolerance = 0.1;  // s: map → odom is future-dated by this much (as amcl)
   bool tf_broadcast = true;
+  // ~publish_pose_every_scan: /amcl_pose after every scan. False (the default, as amcl): after
+  // the filter's updates only (the robot moved update_min_d or turned update_min_a), after
+  // /initialpose and when the localizer's state changes.
+  bool publish_pose_every_scan = false;
   bool has_initial_pose = false;  // initial_pose_x/y/a given
   double initial_pose[3] = {0.0, 0.0, 0.0};
   double initial_cov[3] = {0.5 * 0.5, 0.5 * 0.5, (M_PI / 12.0) * (M_PI / 12.0)};
@@ -38,5 +42,8 @@ struct LocalizationNodeParameters {
 // Reads and validates the parameters; an error names the parameter.
 Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(
     const ::ros::NodeHandle& private_nh);
+
+// The parameters in force, for the node's start-up line ("method ..., particles ..., ...").
+std::string DescribeLocalizationParameters(const LocalizationNodeParameters& parameters);
 
 }  // namespace semchain::ros1

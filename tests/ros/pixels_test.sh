@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# pixels_test.sh SEMCHAIN_ROS SEMCHAIN SOURCE_DIR WORK [RATE]: the mapping mode from pixels. The
+# fixture's room A trial exported with its colour and depth images (WORK/room_a_images.bag) is
+# played at RATE (default 2) into semchain_ros _mode:=mapping _detector:=models/detector.onnx
+# (tests/ros/mapping_checker.py, then /semchain/save_map). The detector runs on a thread of its
+# own: every scan of the bag must be processed (none dropped or rejected) and every frame
+# detected and mapped, none skipped as out of time order (tests/ros/check_every_frame.py). The
+# default model finds next to nothing in simulated frames, so no object is required.
+set -euo pipefail
+node="$1"
+semchain="$2"
+source_dir="$3"
+work="$4"
+rate="${5:-2}"
+name=pixels
+bag="$work/room_a_images.bag"
+"$semchain" bag export "$work/room_a" --out "$bag" >/dev/null
+rm -rf "$work/pixels_map"
+source "$source_dir/tests/ros/ros_env.sh"
+ros_start "$name"
+node_args=(_mode:=mapping _out:="$work/pixels_map" _detector:="$source_dir/models/detector.onnx")
+ros_check "$name" "$source_dir/tests/ros/mapping_checker.py" --bag "$bag" --rate "$rate" \
+  --objects-optional
+/usr/bin/python3 "$source_dir/tests/ros/check_every_frame.py" "$bag" "$work/${name}_stats.json"
