@@ -1,6 +1,7 @@
 // semchain bag export RUN --out FILE.bag [--no-images] [--compression none|lz4|bz2]
 // semchain bag import FILE.bag --out RUN [--scan-topic T] [--odom-frame F] [--base-frame F]
-//                     [--camera NS] [--detections-topic T] ...
+//                     [--camera NS] [--color-topic T] [--depth-topic T] [--camera-yaml FILE]
+//                     [--detections-topic T] ...
 // Compiled in only where ROS 1 is found (SEMCHAIN_WITH_ROS).
 #include <cstdio>
 #include <memory>
@@ -91,12 +92,25 @@ void AddImport(CLI::App& bag, int& exit_code) {
       ->capture_default_str();
   command
       ->add_option("--camera", options.topics.camera,
-                   "RGB-D camera namespace: NS/color/image_raw, NS/color/camera_info, "
-                   "NS/depth/image_raw")
+                   "RGB-D camera namespace: colour from NS/color/image_raw, NS/rgb/image_raw or "
+                   "NS/image_raw, depth from NS/depth/image_raw, "
+                   "NS/aligned_depth_to_color/image_raw or NS/depth_registered/image_raw (each "
+                   "also as image_transport's /compressed or /compressedDepth), camera_info "
+                   "beside the colour image")
       ->capture_default_str();
+  command->add_option("--color-topic", options.topics.color_image,
+                      "Colour image topic (sensor_msgs/Image or CompressedImage; T/compressed "
+                      "is taken when the bag has only that)");
   command->add_option("--depth-topic", options.topics.depth_image,
-                      "Depth image aligned to colour, if not NS/depth/image_raw (e.g. "
-                      "/camera/aligned_depth_to_color/image_raw)");
+                      "Depth image aligned to colour (sensor_msgs/Image, or CompressedImage "
+                      "from compressed_depth_image_transport; T/compressedDepth is taken when "
+                      "the bag has only that), e.g. /camera/aligned_depth_to_color/image_raw");
+  command->add_option("--camera-info-topic", options.topics.camera_info,
+                      "sensor_msgs/CameraInfo topic (default: beside the colour image)");
+  command->add_option("--camera-yaml", options.camera_yaml,
+                      "camera.yaml with the camera's intrinsics, mounting and max_range, used "
+                      "instead of camera_info and tf (a bag with an uncalibrated camera_info, "
+                      "or no tf of the camera)");
   command
       ->add_option("--detections-topic", options.topics.detections,
                    "std_msgs/String topic of detections.jsonl records")

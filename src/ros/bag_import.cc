@@ -80,18 +80,21 @@ Result<ImportedRun> ReadBag(BagReader& reader, const fs::path& dir, ImportContex
   if (!truth.ok()) return truth.status();
   run.truth = std::move(*truth);
 
+  Result<CameraTopics> camera_topics = ResolveCameraTopics(reader, options.topics);
+  if (!camera_topics.ok()) return camera_topics.status();
+
   // The progress bar counts scans and images, the bulk of the work.
   std::optional<ProgressBar> progress;
   if (options.show_progress) {
-    const BagTopics& t = options.topics;
-    progress.emplace("bag import", reader.MessageCount({t.scan, t.ColorImage(), t.DepthImage()}));
+    progress.emplace("bag import", reader.MessageCount({options.topics.scan, camera_topics->color,
+                                                        camera_topics->depth}));
     reader.set_on_message(
         [&progress, done = std::size_t{0}]() mutable { progress->Update(++done); });
   }
   Result<ImportedLog> log = ImportScans(reader, **transforms, run.truth.by_stamp, context);
   if (!log.ok()) return log.status();
   run.log = std::move(*log);
-  Result<ImportedCamera> camera = ImportCamera(reader, **transforms, dir, context);
+  Result<ImportedCamera> camera = ImportCamera(reader, **transforms, *camera_topics, dir, context);
   if (!camera.ok()) return camera.status();
   run.camera = std::move(*camera);
   reader.set_on_message(nullptr);

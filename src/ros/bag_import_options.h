@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,10 @@ struct BagImportOptions {
   // camera.yaml's max_range (metres) for a bag without run info; by default the deepest depth
   // reading of the frames, rounded up to 0.1 m (6 m without frames).
   std::optional<double> camera_max_range;
+  // A camera.yaml (io/camera_io.h) giving the camera's intrinsics, mounting and max_range,
+  // in place of camera_info and tf: for a bag whose camera_info is uncalibrated, or whose tf
+  // lacks the camera. Empty: from the bag.
+  std::filesystem::path camera_yaml;
   bool show_progress = true;  // a progress bar on stderr when it is a terminal
 };
 

@@ -22,16 +22,23 @@ struct BagTopics {
   std::string tf_static = "/tf_static";
   std::string odom = "/odom";
   // The RGB-D camera's namespace: <camera>/color/image_raw, <camera>/color/camera_info and
-  // <camera>/depth/image_raw (unless 'depth_image' names another topic, e.g. a RealSense's
-  // /camera/aligned_depth_to_color/image_raw).
+  // <camera>/depth/image_raw, as `bag export` writes them. `bag import` also finds other
+  // layouts in it and compressed images (camera_topics.h), unless 'color_image', 'depth_image'
+  // or 'camera_info' name the topic (e.g. a RealSense's /camera/aligned_depth_to_color/image_raw).
   std::string camera = "/camera";
+  std::string color_image;
   std::string depth_image;
+  std::string camera_info;
   std::string detections = "/semchain/detections";
   std::string truth = "/semchain/truth";
   std::string run_info = "/semchain/run_info";
 
-  std::string ColorImage() const { return camera + "/color/image_raw"; }
-  std::string CameraInfo() const { return camera + "/color/camera_info"; }
+  std::string ColorImage() const {
+    return color_image.empty() ? camera + "/color/image_raw" : color_image;
+  }
+  std::string CameraInfo() const {
+    return camera_info.empty() ? camera + "/color/camera_info" : camera_info;
+  }
   std::string DepthImage() const {
     return depth_image.empty() ? camera + "/depth/image_raw" : depth_image;
   }

@@ -64,6 +64,29 @@ std::size_t BagReader::MessageCount(const std::vector<std::string>& topics) cons
   return count;
 }
 
+std::string BagReader::TypeOf(const std::string& topic) const {
+  const auto it = topics_.find(topic);
+  return it == topics_.end() ? std::string() : it->second.datatype;
+}
+
+Status BagReader::Walk(const std::vector<std::string>& topics, const InstanceVisitor& visit) {
+  if (topics.empty()) return Status::Ok();
+  std::map<std::string, std::size_t> counts;
+  try {
+    rosbag::View view(bag_, rosbag::TopicQuery(topics));
+    for (const rosbag::MessageInstance& instance : view) {
+      const std::string& topic = instance.getTopic();
+      const std::string where =
+          path_.string() + ": " + topic + " message " + std::to_string(++counts[topic]);
+      SEMCHAIN_RETURN_IF_ERROR(visit(instance, BagMessage{topic, where}));
+      if (on_message_) on_message_();
+    }
+  } catch (const std::exception& error) {
+    return Status::Error(path_.string() + ": cannot read: " + error.what());
+  }
+  return Status::Ok();
+}
+
 std::vector<std::string> BagReader::Present(const std::vector<std::string>& topics) const {
   std::vector<std::string> present;
   for (const std::string& topic : topics) {

@@ -105,10 +105,16 @@ Result<cv::Mat> DepthFromImageMsg(const sensor_msgs::Image& msg, double depth_sc
   const double metres_per_value = millimetres ? kMillimetre : 1.0;
   cv::Mat metres;
   image->convertTo(metres, CV_64FC1, metres_per_value);
-  cv::Mat raw(metres.size(), CV_16UC1);
-  for (int row = 0; row < metres.rows; ++row) {
-    for (int col = 0; col < metres.cols; ++col) {
-      const double units = std::round(metres.at<double>(row, col) / depth_scale);
+  return MetresToDepthUnits(metres, depth_scale);
+}
+
+cv::Mat MetresToDepthUnits(const cv::Mat& metres, double depth_scale) {
+  cv::Mat values;
+  metres.convertTo(values, CV_64FC1);  // float readings exactly, NaN and inf kept
+  cv::Mat raw(values.size(), CV_16UC1);
+  for (int row = 0; row < values.rows; ++row) {
+    for (int col = 0; col < values.cols; ++col) {
+      const double units = std::round(values.at<double>(row, col) / depth_scale);
       const bool valid = std::isfinite(units) && units > 0.0 && units <= 65535.0;
       raw.at<std::uint16_t>(row, col) = valid ? static_cast<std::uint16_t>(units) : 0;
     }

@@ -31,6 +31,10 @@ Result<cv::Mat> ColorFromImageMsg(const sensor_msgs::Image& msg);
 // what 16 bits hold becomes 0 (no measurement).
 Result<cv::Mat> DepthFromImageMsg(const sensor_msgs::Image& msg, double depth_scale);
 
+// 'metres' (CV_32FC1 or CV_64FC1) as CV_16UC1 in units of 'depth_scale' metres, rounded; a
+// reading that is not finite, not positive or past what 16 bits hold becomes 0 (no measurement).
+cv::Mat MetresToDepthUnits(const cv::Mat& metres, double depth_scale);
+
 // A camera_info of 'camera' (no distortion; P = K | 0).
 sensor_msgs::CameraInfo ToCameraInfoMsg(const PinholeCamera& camera,
                                         const std_msgs::Header& header);
