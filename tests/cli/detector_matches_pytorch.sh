@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The C++ detector (OpenCV DNN on the exported ONNX) gives the boxes PyTorch gives on the same
 # images: models/detector.onnx against tests/data/detector_reference/boxes.json, written by
-#   cd train && /usr/bin/python3 -m semchain_train.reference_boxes --model RUN/best.pt \
+#   cd train && /usr/bin/python3 -m semchain_train.reference_boxes --model ../models/detector.onnx --torch-scale n \
 #     --images ../tests/data/detector_reference --out ../tests/data/detector_reference/boxes.json \
 #     --conf 0.02
-# from the checkpoint the model was exported from (models/README.md).
+# (the export's own weights, half precision included, run in PyTorch; models/README.md).
 #   detector_matches_pytorch.sh SEMCHAIN SOURCE_DIR WORK
 set -euo pipefail
 semchain="$1"

@@ -80,7 +80,8 @@ def read_stages(paths: list[Path]) -> Epochs:
             epochs.append(len(epochs) + 1)
             for key in COLOURS:
                 values[key].append(_number(row[key], source))
-            cpu += _number(row.get("cpu_seconds", "") or "nan", source) if row.get("cpu_seconds") else 0.0
+            if row.get("cpu_seconds"):  # absent in results.csv written before the column existed
+                cpu += _number(row["cpu_seconds"], source)
             wall += _number(row.get("seconds", "") or "0", source)
         stage_ends.append(len(epochs))
     return Epochs(
@@ -154,9 +155,10 @@ def draw(data: Epochs, title: str) -> np.ndarray:
         cv2.line(image, (WIDTH - MARGIN_RIGHT + 15, y), (WIDTH - MARGIN_RIGHT + 40, y), COLOURS[key], 2)
         cv2.putText(image, LABELS[key], (WIDTH - MARGIN_RIGHT + 45, y + 4), font, 0.4, (0, 0, 0), 1, cv2.LINE_AA)
     best = np.nanmax(data.values["map50"]) if np.isfinite(data.values["map50"]).any() else float("nan")
+    cpu = f"{data.cpu_hours:.1f} CPU-hours, " if data.cpu_hours > 0 else ""
     footer = (
-        f"{int(data.epoch.max())} epochs in {len(data.stage_ends)} stage(s), {data.cpu_hours:.1f} CPU-hours "
-        f"({data.wall_hours:.1f} h wall); best val mAP@0.5 {best:.3f}"
+        f"{int(data.epoch.max())} epochs in {len(data.stage_ends)} stage(s), {cpu}{data.wall_hours:.1f} h wall; "
+        f"best val mAP@0.5 {best:.3f}"
     )
     cv2.putText(image, footer, (MARGIN_LEFT, HEIGHT - 15), font, 0.45, (0, 0, 0), 1, cv2.LINE_AA)
     cv2.putText(image, "epoch", (bottom.right - 40, bottom.bottom + 18), font, 0.4, (120, 120, 120), 1, cv2.LINE_AA)
@@ -181,5 +183,5 @@ def run(args: argparse.Namespace) -> int:
     data = read_stages(args.results)
     write_png(args.out, draw(data, args.title))
     best = np.nanmax(data.values["map50"]) if np.isfinite(data.values["map50"]).any() else float("nan")
-    print(f"wrote {args.out}: {int(data.epoch.max())} epochs, {data.cpu_hours:.2f} CPU-hours, best val mAP@0.5 {best:.4f}")
+    print(f"wrote {args.out}: {int(data.epoch.max())} epochs, {data.cpu_hours:.2f} CPU-hours recorded, best val mAP@0.5 {best:.4f}")
     return 0

@@ -57,9 +57,24 @@ def split_flat_output(flat: torch.Tensor, input_size: tuple[int, int], strides=(
 class _Network:
     """forward(RGB uint8 letterboxed image) -> raw maps, from a checkpoint or an ONNX file."""
 
-    def __init__(self, path: Path, input_size: tuple[int, int]):
+    def __init__(self, path: Path, input_size: tuple[int, int], torch_scale: str | None = None):
         self.path = path
-        if path.suffix == ".onnx":
+        if path.suffix == ".onnx" and torch_scale is not None:
+            # The export's own weights (half-precision ones included) run in PyTorch: what OpenCV
+            # computes from the file is compared with PyTorch on the very same numbers.
+            from .model.config import ModelConfig
+            from .onnx_import import export_input_size, load_detector_from_onnx
+
+            names_path = path.with_suffix(".names")
+            if not names_path.is_file():
+                raise FileNotFoundError(f"{names_path}: no class-names file beside the model")
+            self.names = [line.strip() for line in names_path.read_text().splitlines() if line.strip()]
+            self.input_size = export_input_size(path)
+            # Eval mode computes the export's function whatever the batch-norm statistics.
+            calibration = torch.zeros(1, 3, self.input_size[1], self.input_size[0])
+            config = ModelConfig(scale=torch_scale, classes=len(self.names))
+            self.model = load_detector_from_onnx(path, config, calibration).eval()
+        elif path.suffix == ".onnx":
             import cv2
             import onnx
 
@@ -111,8 +126,10 @@ def detect_image(network: _Network, rgb: np.ndarray, options: ReferenceOptions) 
     ]
 
 
-def reference_boxes(model: Path, images: list[Path], options: ReferenceOptions) -> dict[str, Any]:
-    network = _Network(model, options.input_size)
+def reference_boxes(
+    model: Path, images: list[Path], options: ReferenceOptions, torch_scale: str | None = None
+) -> dict[str, Any]:
+    network = _Network(model, options.input_size, torch_scale)
     results = []
     for path in images:
         results.append({"image": path.name, "detections": detect_image(network, read_rgb(path), options)})
@@ -146,6 +163,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--input", default="320x256", help="network input WIDTHxHEIGHT for a checkpoint (default 320x256)")
     parser.add_argument("--conf", type=float, default=ReferenceOptions.conf, help="confidence threshold (default 0.25)")
     parser.add_argument("--iou", type=float, default=ReferenceOptions.iou, help="NMS IoU threshold (default 0.45)")
+    parser.add_argument("--torch-scale", choices=("n", "s"),
+                        help="run an .onnx export's weights in PyTorch (a YOLOv8 of this scale) instead of OpenCV")
     args = parser.parse_args(argv)
     try:
         from .export import parse_size
@@ -153,7 +172,7 @@ def main(argv: list[str] | None = None) -> int:
         options = ReferenceOptions(input_size=parse_size(args.input), conf=args.conf, iou=args.iou)
         if not (0 < options.conf <= 1 and 0 < options.iou <= 1):
             raise ValueError("--conf and --iou must lie in (0, 1]")
-        result = reference_boxes(args.model, list_images(args.images), options)
+        result = reference_boxes(args.model, list_images(args.images), options, args.torch_scale)
         args.out.parent.mkdir(parents=True, exist_ok=True)
         tmp = args.out.with_name(args.out.name + ".tmp")
         tmp.write_text(json.dumps(result, indent=1) + "\n")
