@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 struct BenchDetectorArgs {
   std::string model;
   std::string classes;
+  std::string class_map;  // the model's classes mapped to semchain's (detection/class_map.h)
   std::string data;
   std::string split = "test";
   std::string input = "auto";  // the model's own (a static export's size), else 640x640
@@ -68,7 +69,7 @@ Status RunBenchDetector(const BenchDetectorArgs& args) {
   if (!dataset.ok()) return dataset.status();
   cv::setNumThreads(args.threads);
   Result<std::unique_ptr<detection::YoloDetector>> detector =
-      detection::LoadYoloDetector(args.model, args.classes, options);
+      detection::LoadYoloDetector(args.model, args.classes, options, args.class_map);
   if (!detector.ok()) return detector.status();
   SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(args.out));
   std::unique_ptr<ProgressBar> bar;  // made once the number of images is known
@@ -127,6 +128,9 @@ void AddBenchDetector(CLI::App& bench, int& exit_code) {
       ->required();
   command->add_option("--classes", args->classes,
                       "Class names, one per line (default: the .names file beside the model)");
+  command->add_option("--class-map", args->class_map,
+                      "YAML map 'model class: semchain class' (e.g. config/classes/coco.yaml): a "
+                      "model of other classes scored on a data set of semchain's");
   command->add_option("--data", args->data, "The data set's data.yaml")->required();
   command->add_option("--split", args->split, "train, val or test")->capture_default_str();
   command

@@ -1,5 +1,5 @@
 // semchain detect --model M.onnx --images DIR|IMAGE --out DIR [--classes F] [--conf T] [--nms T]
-//                 [--input WxH]
+//                 [--input WxH] [--class-map F]
 // Runs a YOLOv8-format ONNX detector (DESIGN.md §3.10) on images or on a run directory's
 // frames: writes DIR/detections.jsonl (§5.5) and DIR/annotated/<frame>.png. On a run directory
 // (camera.yaml + frames/) detections get depth_m from the aligned depth frames and frame names
@@ -36,6 +36,7 @@ struct DetectArgs {
   std::string images;
   std::string out;
   std::string classes;
+  std::string class_map;       // the model's classes mapped to semchain's (detection/class_map.h)
   std::string input = "auto";  // the model's own (a static export's size), else 640x640
   double confidence = detection::YoloOptions().confidence_threshold;
   double nms = detection::YoloOptions().nms_iou_threshold;
@@ -114,7 +115,7 @@ Status RunDetect(const DetectArgs& args) {
   Result<detection::YoloOptions> options = BuildOptions(args);
   if (!options.ok()) return options.status();
   Result<std::unique_ptr<detection::YoloDetector>> detector =
-      detection::LoadYoloDetector(args.model, args.classes, *options);
+      detection::LoadYoloDetector(args.model, args.classes, *options, args.class_map);
   if (!detector.ok()) return detector.status();
   const fs::path images(args.images), out(args.out);
   const bool run = detection::IsRunDirectory(images);
@@ -145,8 +146,10 @@ Status RunDetect(const DetectArgs& args) {
   SEMCHAIN_RETURN_IF_ERROR(WriteDetectionsJsonl(out / "detections.jsonl", *frames));
   std::size_t count = 0;
   for (const FrameDetections& frame : *frames) count += frame.detections.size();
-  spdlog::info("detect: {} detections in {} frames ({} head) -> {}", count, frames->size(),
-               (*detector)->head().kind == detection::HeadKind::kRaw ? "raw" : "decoded",
+  const char* head = (*detector)->head().kind == detection::HeadKind::kDecoded ? "decoded head"
+                     : (*detector)->decoding_removed() ? "raw head, the model's decoding cut"
+                                                       : "raw head";
+  spdlog::info("detect: {} detections in {} frames ({}) -> {}", count, frames->size(), head,
                (out / "detections.jsonl").string());
   return Status::Ok();
 }
@@ -170,6 +173,9 @@ void AddDetectCommand(CLI::App& app, int& exit_code) {
       ->required();
   command->add_option("--classes", args->classes,
                       "Class names, one per line (default: the model's .names file)");
+  command->add_option("--class-map", args->class_map,
+                      "YAML map 'model class: semchain class' (e.g. config/classes/coco.yaml): "
+                      "detections of semchain's classes; the classes it does not name are dropped");
   command->add_option("--conf", args->confidence, "Confidence threshold")->capture_default_str();
   command->add_option("--nms", args->nms, "NMS IoU threshold (per class)")->capture_default_str();
   command

@@ -56,6 +56,11 @@ void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string
                           " (class names from M.names beside it)");
   command->add_option("--classes", args->classes, "Class-names file of --detector");
   command
+      ->add_option("--class-map", args->class_map,
+                   "YAML map 'model class: semchain class' of --detector's classes (e.g. "
+                   "config/classes/coco.yaml); the classes it does not name are dropped")
+      ->needs("--detector");
+  command
       ->add_option(
           "--detector-input", args->input,
           "Network input WIDTHxHEIGHT of --detector (multiples of 32), or auto: its export size")
@@ -68,7 +73,7 @@ Result<RunDetectorFunction> LoadRunDetector(const DetectorArgs& args, bool show_
   std::string invalid;
   if (!options.Validate(&invalid)) return Status::Error("--detector-input: " + invalid);
   Result<std::unique_ptr<detection::YoloDetector>> loaded =
-      detection::LoadYoloDetector(args.model, args.classes, options);
+      detection::LoadYoloDetector(args.model, args.classes, options, args.class_map);
   if (!loaded.ok()) return loaded.status();
   // std::function must be copyable: the detector is shared by the copies.
   std::shared_ptr<detection::YoloDetector> detector = std::move(*loaded);

@@ -18,11 +18,12 @@ namespace semchain::app {
 struct DetectorArgs {
   std::string model;  // a YOLOv8-format ONNX model; empty: RUN/detections.jsonl
   std::string classes;
+  std::string class_map;       // the model's classes mapped to semchain's (detection/class_map.h)
   std::string input = "auto";  // the model's own (a static export's size), else 640x640
 };
 
-// Adds --detector, --classes and --detector-input to 'command'; 'what' says what the model's
-// detections replace (for --help).
+// Adds --detector, --classes, --class-map and --detector-input to 'command'; 'what' says what the
+// model's detections replace (for --help).
 void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string& what);
 
 // Detects the frames of a run directory (RUN/camera.yaml, RUN/frames/).

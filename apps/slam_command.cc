@@ -282,6 +282,11 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       ->needs(semantic);
   command->add_option("--classes", args->semantic.detector.classes,
                       "Class-names file of --detector");
+  command
+      ->add_option("--class-map", args->semantic.detector.class_map,
+                   "YAML map 'model class: semchain class' of --detector's classes (e.g. "
+                   "config/classes/coco.yaml); the classes it does not name are dropped")
+      ->needs("--detector");
   command->add_option(
       "--detector-input", args->semantic.detector.input,
       "Network input WIDTHxHEIGHT of --detector (multiples of 32), or auto: its export size");

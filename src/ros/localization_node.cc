@@ -48,7 +48,7 @@ Result<std::unique_ptr<LocalizationNode>> LocalizationNode::Create(::ros::NodeHa
     map->recognizer = std::make_shared<const bow::KeyframeRecognizer>(std::move(*recognizer));
   }
   Result<std::unique_ptr<detection::YoloDetector>> detector =
-      LoadNodeDetector(parameters->detector);
+      LoadNodeDetector(parameters->detector, parameters->class_map);
   if (!detector.ok()) return detector.status();
   std::unique_ptr<LocalizationNode> node(new LocalizationNode(
       nh, private_nh, std::move(*parameters), std::move(map), std::move(*detector)));

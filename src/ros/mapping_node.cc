@@ -36,7 +36,7 @@ Result<std::unique_ptr<MappingNode>> MappingNode::Create(::ros::NodeHandle nh,
   Result<MappingNodeParameters> parameters = ReadMappingNodeParameters(private_nh);
   if (!parameters.ok()) return parameters.status();
   Result<std::unique_ptr<detection::YoloDetector>> detector =
-      LoadNodeDetector(parameters->detector);
+      LoadNodeDetector(parameters->detector, parameters->class_map);
   if (!detector.ok()) return detector.status();
   std::unique_ptr<MappingNode> node(
       new MappingNode(nh, std::move(*parameters), std::move(*detector)));

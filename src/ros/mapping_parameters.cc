@@ -70,6 +70,10 @@ Result<MappingNodeParameters> ReadMappingNodeParameters(const ::ros::NodeHandle&
     if (!loaded.ok()) return Status::Error("parameter ~slam_config: " + loaded.message());
   }
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "detector", &p.detector));
+  SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "class_map", &p.class_map));
+  if (!p.class_map.empty() && p.detector.empty()) {
+    return Status::Error("parameter ~class_map: needs ~detector (it maps the model's classes)");
+  }
   SEMCHAIN_RETURN_IF_ERROR(
       ReadChecked(nh, "camera_max_range", &p.camera_max_range, Positive, "> 0 (metres)"));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "stats_file", &p.stats_file));

@@ -19,6 +19,7 @@ struct MappingNodeParameters {
   std::string out;                   // ~out: the map folder /semchain/save_map writes (required)
   std::string slam_config;           // ~slam_config: SLAM options YAML (as `slam --config`)
   std::string detector;              // ~detector: ONNX model; empty: the detections topic
+  std::string class_map;             // ~class_map: ~detector's classes mapped to semchain's
   double camera_max_range = 6.0;     // ~camera_max_range: depth beyond is no reading
   std::string stats_file;            // ~stats_file: CPU and latency JSON at exit
   NodeFrames frames;                 // ~base_frame, ~odom_frame, ~map_frame, ~tf_wait

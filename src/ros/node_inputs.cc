@@ -172,9 +172,10 @@ std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& mes
   return frame;
 }
 
-Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model) {
+Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model,
+                                                                  const std::string& class_map) {
   if (model.empty()) return std::unique_ptr<detection::YoloDetector>();
-  return detection::LoadYoloDetector(model, "", detection::YoloOptions());
+  return detection::LoadYoloDetector(model, "", detection::YoloOptions(), class_map);
 }
 
 std::string DescribeNodeDetector(const std::string& model,

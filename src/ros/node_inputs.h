@@ -101,8 +101,10 @@ class RgbdDetector {
   std::deque<sensor_msgs::ImageConstPtr> depths_;  // waiting for their colour image
 };
 
-// ~detector's model (no detector, null, when 'model' is empty); the error names the file.
-Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model);
+// ~detector's model (no detector, null, when 'model' is empty) with ~class_map's map when
+// 'class_map' is not empty; the error names the file.
+Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model,
+                                                                  const std::string& class_map);
 // "M.onnx (input 320x256, 10 classes)", for the start-up line.
 std::string DescribeNodeDetector(const std::string& model, const detection::YoloDetector& detector);
 

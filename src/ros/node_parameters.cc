@@ -35,6 +35,10 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
                          localization::LocalizationMethodList() + ")");
   }
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "detector", &p.detector));
+  SEMCHAIN_RETURN_IF_ERROR(Read(nh, "class_map", &p.class_map));
+  if (!p.class_map.empty() && p.detector.empty()) {
+    return Status::Error("parameter ~class_map: needs ~detector (it maps the model's classes)");
+  }
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "vocabulary", &p.vocabulary));
   SEMCHAIN_RETURN_IF_ERROR(ReadDouble(nh, "camera_max_range", &p.camera_max_range));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "stats_file", &p.stats_file));

@@ -22,6 +22,7 @@ struct LocalizationNodeParameters {
   std::string map;                            // ~map: a semchain map folder
   std::string method = "semantic-scanmatch";  // ~method (DESIGN.md §4)
   std::string detector;                       // ~detector: ONNX model; empty: detections topic
+  std::string class_map;                      // ~class_map: YAML map of ~detector's classes
   std::string vocabulary;                     // ~vocabulary: semantic-amcl-bow's vocabulary
   double camera_max_range = 6.0;              // ~camera_max_range: depth beyond is no reading
   std::string stats_file;                     // ~stats_file: CPU and latency JSON at exit
