@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,14 +82,16 @@ Status WritePrecisionRecallPng(const eval::ClosureTable& table, const std::strin
     for (std::size_t k = 0; k + 1 < points.size(); ++k) {
       cv::line(image, points[k], points[k + 1], stage.colour, 2, cv::LINE_AA);
     }
+    std::optional<cv::Point> named;  // the last point whose threshold was written
     for (std::size_t k = 0; k < points.size(); ++k) {
       cv::circle(image, points[k], 4, stage.colour, cv::FILLED, cv::LINE_AA);
-      // Every other threshold named, and the last, beside its point (offset by stage).
-      if (k % 2 == 0 || k + 1 == points.size()) {
-        closures_png::Text(image, closures_png::Fixed(thresholds[k], 2),
-                           points[k] + cv::Point(6, -6 + 12 * static_cast<int>(s)), 0.35,
-                           stage.colour);
-      }
+      // Thresholds named beside their points (offset by stage), unless on top of the last one
+      // named: where the curve stands still only its first threshold is written.
+      if (named && cv::norm(points[k] - *named) < 30.0) continue;
+      closures_png::Text(image, closures_png::Fixed(thresholds[k], 2),
+                         points[k] + cv::Point(6, -6 + 12 * static_cast<int>(s)), 0.35,
+                         stage.colour);
+      named = points[k];
     }
     const cv::Point legend(closures_png::kWidth - closures_png::kRight + 20,
                            closures_png::kTop + 30 + 28 * static_cast<int>(s));
