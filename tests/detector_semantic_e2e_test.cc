@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "detection/run_detection.h"
@@ -69,6 +71,15 @@ TEST(DetectorSemanticTest, TinyModelDetectionsMapTheColouredBoxes) {
     });
     ASSERT_NE(found, objects.end()) << box.class_name << " not mapped";
     EXPECT_LT((found->center - box.footprint.center).norm(), 0.12) << box.class_name;
+    // Once: no second object of its class on or near it.
+    const double reach = std::max(0.3, 0.5 * std::hypot(box.footprint.width, box.footprint.depth));
+    EXPECT_EQ(std::count_if(objects.begin(), objects.end(),
+                            [&box, reach](const auto& object) {
+                              return object.class_name == box.class_name &&
+                                     (object.center - box.footprint.center).norm() <= reach;
+                            }),
+              1)
+        << box.class_name << " mapped more than once";
   }
 }
 

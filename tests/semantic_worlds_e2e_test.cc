@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -87,6 +88,53 @@ std::vector<int> MatchToTruth(const std::vector<semantic::SemanticObject>& objec
   return match;
 }
 
+// One object, one entry: for each world object, the mapped objects of its class whose nearest
+// world object of the class it is, within 'gate' metres or half its diagonal (a duplicate of a
+// large object may lie farther from its centre than a small one's).
+std::vector<std::vector<int>> EntriesPerTruthObject(
+    const std::vector<semantic::SemanticObject>& objects, const std::vector<sim::Solid>& truth,
+    double gate) {
+  std::vector<std::vector<int>> entries(truth.size());
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    int nearest = -1;
+    double nearest_distance = 0.0;
+    for (std::size_t j = 0; j < truth.size(); ++j) {
+      if (objects[i].class_name != truth[j].class_name) continue;
+      const double d = (objects[i].center - truth[j].footprint.center).norm();
+      if (nearest < 0 || d < nearest_distance) {
+        nearest = static_cast<int>(j);
+        nearest_distance = d;
+      }
+    }
+    if (nearest < 0) continue;
+    const sim::Footprint& footprint = truth[static_cast<std::size_t>(nearest)].footprint;
+    const double reach = footprint.shape == sim::Footprint::Shape::kCircle
+                             ? footprint.radius
+                             : 0.5 * std::hypot(footprint.width, footprint.depth);
+    if (nearest_distance <= std::max(gate, reach)) {
+      entries[static_cast<std::size_t>(nearest)].push_back(static_cast<int>(i));
+    }
+  }
+  return entries;
+}
+
+// Fails for every world object mapped more than once.
+void ExpectNoDuplicates(const std::vector<semantic::SemanticObject>& objects,
+                        const std::vector<sim::Solid>& truth) {
+  const std::vector<std::vector<int>> entries = EntriesPerTruthObject(objects, truth, 0.3);
+  for (std::size_t j = 0; j < truth.size(); ++j) {
+    if (entries[j].size() <= 1) continue;
+    std::string mapped;
+    for (int i : entries[j]) {
+      const semantic::SemanticObject& object = objects[static_cast<std::size_t>(i)];
+      mapped += " " + std::to_string(object.id) + " at (" + std::to_string(object.center.x()) +
+                ", " + std::to_string(object.center.y()) + ")";
+    }
+    ADD_FAILURE() << truth[j].class_name << " at " << truth[j].footprint.center.transpose()
+                  << " mapped " << entries[j].size() << " times:" << mapped;
+  }
+}
+
 // lab_loop reproduces seed 001 Table 1: the chain, clockwise from the closet's door, must visit
 // the objects in the world's order with the true centre distances (within 0.05 m).
 void ExpectLabLoopChain(const semantic::SemanticMap& map, const std::vector<int>& match) {
@@ -153,6 +201,7 @@ TEST_P(SemanticWorldsTest, ObjectsMatchTheWorld) {
       "%s: %zu objects, %zu in the world, precision %.3f recall %.3f mean centre error "
       "%.3f m\n",
       GetParam().c_str(), objects.size(), world_.objects.size(), precision, recall, mean_error);
+  ExpectNoDuplicates(objects, world_.objects);
   EXPECT_GE(precision, 0.97);
   EXPECT_GE(recall, 0.97);
   EXPECT_LE(mean_error, 0.08);
@@ -195,6 +244,7 @@ TEST(SemanticRepeatedPassTest, SecondPassAddsNoDuplicates) {
   // Exactly the world's objects, each once, where one pass puts them (ObjectsMatchTheWorld).
   const auto& objects = two.semantic.map.objects;
   EXPECT_EQ(objects.size(), world->objects.size());
+  ExpectNoDuplicates(objects, world->objects);
   const std::vector<int> match = MatchToTruth(objects, world->objects, 0.3);
   double error_sum = 0.0;
   for (std::size_t i = 0; i < objects.size(); ++i) {
