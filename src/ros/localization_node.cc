@@ -129,7 +129,8 @@ void LocalizationNode::Start(const NodeMode& mode) {
       nh_.advertiseService("global_localization", &LocalizationNode::OnGlobalLocalization, this);
   const std::string objects =
       !localization::IsSemanticMethod(localizer_.method()) ? "none (laser only)"
-      : detector_ ? "detector " + DescribeNodeDetector(parameters_.detector, *detector_)
+      : detector_ ? "detector " + DescribeNodeDetector(parameters_.detector, parameters_.class_map,
+                                                       *detector_)
                   : std::string("/semchain/detections");
   ROS_INFO("semchain_ros: %s, method %s, map %s (%zu objects, %zu chains), objects: %s, %s%s",
            mode.Describe().c_str(), parameters_.method.c_str(), parameters_.map.c_str(),

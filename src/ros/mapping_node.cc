@@ -101,7 +101,8 @@ void MappingNode::Start(const NodeMode& mode) {
               parameters_.out.c_str(), writable.message().c_str());
   }
   const std::string objects =
-      detector_ ? "detector " + DescribeNodeDetector(parameters_.detector, *detector_)
+      detector_ ? "detector " +
+                      DescribeNodeDetector(parameters_.detector, parameters_.class_map, *detector_)
                 : std::string("/semchain/detections");
   ROS_INFO("semchain_ros: %s, out %s, objects: %s, %s%s", mode.Describe().c_str(),
            parameters_.out.c_str(), objects.c_str(), DescribeMappingParameters(parameters_).c_str(),

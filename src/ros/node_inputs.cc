@@ -178,11 +178,12 @@ Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::str
   return detection::LoadYoloDetector(model, "", detection::YoloOptions(), class_map);
 }
 
-std::string DescribeNodeDetector(const std::string& model,
+std::string DescribeNodeDetector(const std::string& model, const std::string& class_map,
                                  const detection::YoloDetector& detector) {
   const cv::Size input = detector.options().input_size();
   return model + " (input " + std::to_string(input.width) + "x" + std::to_string(input.height) +
-         ", " + std::to_string(detector.class_names().size()) + " classes)";
+         ", " + std::to_string(detector.class_names().size()) + " classes" +
+         (class_map.empty() ? std::string() : ", class map " + class_map) + ")";
 }
 
 nlohmann::json Spread(std::vector<double> values) {

@@ -105,8 +105,10 @@ class RgbdDetector {
 // 'class_map' is not empty; the error names the file.
 Result<std::unique_ptr<detection::YoloDetector>> LoadNodeDetector(const std::string& model,
                                                                   const std::string& class_map);
-// "M.onnx (input 320x256, 10 classes)", for the start-up line.
-std::string DescribeNodeDetector(const std::string& model, const detection::YoloDetector& detector);
+// "M.onnx (input 320x256, 10 classes, class map C.yaml)", for the start-up line ('class_map'
+// empty: none).
+std::string DescribeNodeDetector(const std::string& model, const std::string& class_map,
+                                 const detection::YoloDetector& detector);
 
 // Mean, median, 95th percentile and maximum of 'values' as JSON (null when empty).
 nlohmann::json Spread(std::vector<double> values);
