@@ -50,8 +50,8 @@ const Scene& GetScene() {
 }
 
 // One whole filter update (motion, 60-beam likelihood field for every particle, KLD
-// resampling, clustering) of state.range(0) particles around the true pose (5000: the issue's
-// figure; 20000: nav2 protocol's max_particles).
+// resampling, clustering) of state.range(0) particles around the true pose (5000: the speed
+// target's figure; 20000: nav2 protocol's max_particles).
 void BM_AmclUpdate60Beams(benchmark::State& state) {
   const Scene& scene = GetScene();
   const int particles = static_cast<int>(state.range(0));

@@ -1,4 +1,4 @@
-// `semchain semantic --detector` end to end (issue 8): the tiny YOLOv8-format test model runs on
+// `semchain semantic --detector` end to end: the tiny YOLOv8-format test model runs on
 // the rendered frames of a room with pure red, green and blue boxes, and its detections (depth
 // from the depth frames) build the semantic map as the simulator's detections would.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// One result, not two (issue 26): the semantic map grown while SLAM runs (`slam --semantic`)
+// One result, not two: the semantic map grown while SLAM runs (`slam --semantic`)
 // equals `slam` followed by `semantic` on the same final trajectory — every object with the
 // same class and its centre within 0.02 m, the same chains — also when the trajectory is
 // corrected late (a loop closing), after the last correction; and it scores as the batch map

@@ -1,4 +1,4 @@
-// `semchain bench reloc` in small (issue 5): map two_similar_rooms from a simulated mapping run
+// `semchain bench reloc` in small: map two_similar_rooms from a simulated mapping run
 // (SLAM + semantic mapping), then relocalize from a few random starts in room A. The semantic
 // methods must find the robot in every trial, and the first pre-localization must be close.
 // Then the particle snapshots of `localize --png` on one trial, on maps made from the world's

@@ -1,4 +1,4 @@
-// Semantic mapping through the whole pipeline on every bundled world (issue 4): simulate with
+// Semantic mapping through the whole pipeline on every bundled world: simulate with
 // detection noise, SLAM, then the semantic map posed by the SLAM trajectory (never the truth),
 // scored against the world's objects.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // SLAM on the simulator's mapping runs of every bundled world: the trajectory must match the
-// truth (ATE <= 0.05 m, issue 3) and the map must agree with the world's surfaces, which a map
+// truth (ATE <= 0.05 m) and the map must agree with the world's surfaces, which a map
 // whose loop failed to close (doubled walls) does not.
 #include <gtest/gtest.h>
 #include <unistd.h>

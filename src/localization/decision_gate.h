@@ -8,7 +8,7 @@
 #include "localization/prelocalization.h"
 #include "localization/sighting.h"
 
-// When a pre-localization may decide between look-alike places (issue 22's "not sure yet").
+// When a pre-localization may decide between look-alike places (or say "not sure yet").
 // PreLocalizer::Decided judges one pre-localization: the best hypothesis stands out among those
 // it kept. Over a turn that is not enough on a floor of look-alike offices: a frame can leave the
 // right office out — its pair placed too far off for the laser to confirm it — and then a

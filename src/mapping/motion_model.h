@@ -17,7 +17,7 @@
 // whole increment is about four times wider on wheel odometry (aces: σ_θ 17° instead of 4° for
 // a 1 m step). With per_reading_noise the filter feeds every reading's step to a MotionStep,
 // whose covariance is propagated as the readings compose. It did not reduce the ACES failures
-// (issue 21) and broke FR079 maps that were fine (README, "SLAM on the three raw logs"), so it is
+// and broke FR079 maps that were fine (docs/experiments.md), so it is
 // off by default.
 namespace semchain::mapping {
 

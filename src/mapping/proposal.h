@@ -47,10 +47,10 @@ struct ProposalOptions {
   // When no particle's match is trusted — the whole filter lost the scan: a loop closing beyond
   // hill climbing's reach, a turn whose wheel odometry stalled — each particle's match starts
   // instead from the best pose of a correlative search around its prediction, ±3σ of the motion
-  // noise capped at these (0: off). ACES on wheel odometry (issue 21): every failing seed lost
+  // noise capped at these (0: off). ACES on wheel odometry: every failing seed lost
   // all its particles' matches at the central crossing of corridors, where it closes a loop.
   // Searched per particle only in those steps: a search on every untrusted particle's match
-  // found trusted but wrong matches along ACES's corridors (stop 34).
+  // found trusted but wrong matches along ACES's corridors (docs/experiments.md).
   double recovery_window_meters = 0.0;
   double recovery_window_radians = 0.4;
   // Floors on the fitted Gaussian's standard deviations.

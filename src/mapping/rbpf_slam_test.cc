@@ -215,7 +215,7 @@ TEST(RbpfSlamTest, WheelOdometryThatStallsOnATurnIsCorrectedByTheScans) {
 // TurnWithStalledOdometry without the heading sweep (config/slam-gmapping.yaml has none): no
 // particle's hill climbing reaches the heading, every match is untrusted, and the proposal falls
 // back on the motion model. The recovery search around each prediction (ACES's loop closure at
-// its central crossing, issue 21) finds the scan's heading.
+// its central crossing) finds the scan's heading.
 TEST(RbpfSlamTest, WhenNoParticleMatchesARecoverySearchFindsTheScan) {
   std::vector<Pose2> truth;
   const std::vector<StampedScan> scans = TurnWithStalledOdometry(&truth);

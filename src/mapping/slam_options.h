@@ -16,7 +16,7 @@ struct SlamOptions {
   EveryScanOptions every_scan;
   // The pose graph behind the filter (loop_closure.h): the best particle's nodes optimized
   // with the loop closures found among them before the final passes. Off by default until it
-  // is shown not to cost the building-sized logs anything (issue 27).
+  // is shown not to cost the building-sized logs anything (docs/results.md, campus logs).
   bool pose_graph = false;
   LoopClosureOptions loop_closure;
 
