@@ -24,6 +24,7 @@
 #include <tuple>
 
 #include "apps/command.h"
+#include "apps/shipped_file.h"
 #include "core/atomic_file.h"
 #include "eval/ate.h"
 #include "eval/relations.h"
@@ -475,7 +476,8 @@ void AddBenchSlam(CLI::App& bench, int& exit_code) {
       ->add_option("--config", args->configs,
                    "SLAM option files, each a configuration of the grid; 'default' = the "
                    "built-in defaults (default: default)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->transform(ShippedFile());
   command->add_option("--seed", args->seeds, "Random seeds (each configuration runs every one)")
       ->delimiter(',');
   command->add_option("--threads", args->threads, "Worker threads per run");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/shipped_file.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "detection/detector_benchmark.h"
@@ -125,9 +126,12 @@ void AddBenchDetector(CLI::App& bench, int& exit_code) {
       "parameters and file size -> DIR/results.json and DIR/results.md");
   auto args = std::make_shared<BenchDetectorArgs>();
   command->add_option("--model", args->model, "ONNX model (raw or decoded YOLOv8 head)")
-      ->required();
-  command->add_option("--classes", args->classes,
-                      "Class names, one per line (default: the .names file beside the model)");
+      ->required()
+      ->transform(ShippedFile());
+  command
+      ->add_option("--classes", args->classes,
+                   "Class names, one per line (default: the .names file beside the model)")
+      ->transform(ShippedFile());
   command->add_option("--class-map", args->class_map,
                       "YAML map 'model class: semchain class' (e.g. config/classes/coco.yaml): a "
                       "model of other classes scored on a data set of semchain's");

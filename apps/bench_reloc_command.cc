@@ -13,6 +13,7 @@
 
 #include "apps/command.h"
 #include "apps/semantic_outputs.h"
+#include "apps/shipped_file.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "eval/reloc_benchmark.h"
@@ -72,10 +73,14 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
       "reloc",
       "Relocalization trials in a simulated world (seed 000 Tables 4-5): map from a mapping run, "
       "random starts in the trial region, every method on the same recordings");
-  command->add_option("--world", args->world, "World to map (YAML)")->required();
-  command->add_option("--live-world", args->live_world,
-                      "World the trials run in (default: --world; a changed world models seed "
-                      "000 §4.2)");
+  command->add_option("--world", args->world, "World to map (YAML)")
+      ->required()
+      ->transform(ShippedFile());
+  command
+      ->add_option("--live-world", args->live_world,
+                   "World the trials run in (default: --world; a changed world models seed "
+                   "000 §4.2)")
+      ->transform(ShippedFile());
   command->add_option("--trials", args->options.trials, "Number of trials")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

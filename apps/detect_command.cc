@@ -1,4 +1,4 @@
-// semchain detect --model M.onnx --images DIR|IMAGE --out DIR [--classes F] [--conf T] [--nms T]
+// semchain detect [--model M.onnx] --images DIR|IMAGE --out DIR [--classes F] [--conf T] [--nms T]
 //                 [--input WxH] [--class-map F]
 // Runs a YOLOv8-format ONNX detector (DESIGN.md §3.10) on images or on a run directory's
 // frames: writes DIR/detections.jsonl (§5.5) and DIR/annotated/<frame>.png. On a run directory
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/shipped_file.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
 #include "detection/detection_drawing.h"
@@ -162,8 +163,12 @@ void AddDetectCommand(CLI::App& app, int& exit_code) {
       app.add_subcommand("detect",
                          "Run a YOLOv8-format ONNX detector on images or a run directory's frames: "
                          "detections.jsonl and annotated PNGs");
+  // Not given: the shipped detector, found as a given path is (force_callback runs the transform
+  // on the default).
   command->add_option("--model", args->model, "ONNX model (raw or decoded YOLOv8 head)")
-      ->required();
+      ->transform(ShippedFile())
+      ->default_str(kDefaultDetector)
+      ->force_callback();
   command
       ->add_option("--images", args->images,
                    "An image, a folder of images, or a run directory (camera.yaml + frames/: "
@@ -171,8 +176,10 @@ void AddDetectCommand(CLI::App& app, int& exit_code) {
       ->required();
   command->add_option("--out", args->out, "Output folder: detections.jsonl, annotated/")
       ->required();
-  command->add_option("--classes", args->classes,
-                      "Class names, one per line (default: the model's .names file)");
+  command
+      ->add_option("--classes", args->classes,
+                   "Class names, one per line (default: the model's .names file)")
+      ->transform(ShippedFile());
   command->add_option("--class-map", args->class_map,
                       "YAML map 'model class: semchain class' (e.g. config/classes/coco.yaml): "
                       "detections of semchain's classes; the classes it does not name are dropped");

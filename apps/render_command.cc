@@ -13,6 +13,7 @@
 #include "apps/dataset_drawing.h"
 #include "apps/map_grey.h"
 #include "apps/semantic_drawing.h"
+#include "apps/shipped_file.h"
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
@@ -212,8 +213,10 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
   command->add_option("--scale", args->scale, "Pixels per metre")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_option("--world", args->world,
-                      "World YAML drawn under a run or over a map (a run's world.yaml by default)");
+  command
+      ->add_option("--world", args->world,
+                   "World YAML drawn under a run or over a map (a run's world.yaml by default)")
+      ->transform(ShippedFile());
   command->add_option("--max-scans", args->max_scans, "Laser scans of a run to draw (0: none)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

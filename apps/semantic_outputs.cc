@@ -5,6 +5,7 @@
 
 #include "apps/map_grey.h"
 #include "apps/semantic_drawing.h"
+#include "apps/shipped_file.h"
 #include "detection/run_detection.h"
 #include "detection/yolo_detector.h"
 #include "semantic/keyframes.h"
@@ -51,10 +52,13 @@ Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMa
 }
 
 void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string& what) {
-  command->add_option("--detector", args->model,
-                      "YOLOv8-format ONNX model run on the rendered frames instead of " + what +
-                          " (class names from M.names beside it)");
-  command->add_option("--classes", args->classes, "Class-names file of --detector");
+  command
+      ->add_option("--detector", args->model,
+                   "YOLOv8-format ONNX model run on the rendered frames instead of " + what +
+                       " (class names from M.names beside it)")
+      ->transform(ShippedFile());
+  command->add_option("--classes", args->classes, "Class-names file of --detector")
+      ->transform(ShippedFile());
   command
       ->add_option("--class-map", args->class_map,
                    "YAML map 'model class: semchain class' of --detector's classes (e.g. "

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "core/build_config.h"
 
 namespace semchain::app {
 
@@ -43,7 +44,8 @@ int main(int argc, char** argv) {
       "semchain: laser SLAM, semantic maps and fast relocalization for indoor robots.\n"
       "Run 'semchain <command> --help' for a command's options."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "semchain 0.1.0");
+  // project(VERSION) of CMakeLists.txt, through the generated header.
+  app.set_version_flag("--version", std::string("semchain ") + semchain::kVersion);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log debug messages");
   spdlog::set_pattern("[%l] %v");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/shipped_file.h"
 #include "core/atomic_file.h"
 #include "sim/simulator.h"
 #include "sim/world.h"
@@ -71,7 +72,8 @@ void AddSimulateCommand(CLI::App& app, int& exit_code) {
       "(log.clf), the true poses (truth.txt), RGB-D frames, detections and camera.yaml");
   auto args = std::make_shared<SimulateArgs>();
   command->add_option("--world", args->world, "World file (YAML, DESIGN.md section 5.2)")
-      ->required();
+      ->required()
+      ->transform(ShippedFile());
   command->add_option("--out", args->out, "Run directory to write (replaces an earlier run)")
       ->required();
   command

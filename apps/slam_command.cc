@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "apps/command.h"
+#include "apps/shipped_file.h"
 #include "apps/slam_semantic.h"
 #include "core/atomic_file.h"
 #include "core/progress_bar.h"
@@ -247,7 +248,8 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
   command->add_option("--log", args->log, "CARMEN log (.clf, .log, .gz)")->required();
   command->add_option("--out", args->out, "Output folder for map.yaml/pgm, trajectory.txt")
       ->required();
-  command->add_option("--config", args->config, "SLAM options YAML (see config/slam.yaml)");
+  command->add_option("--config", args->config, "SLAM options YAML (see config/slam.yaml)")
+      ->transform(ShippedFile());
   command->add_option("--particles", args->particles, "Number of particles")
       ->check(CLI::Range(1, 10000));
   command->add_option("--seed", args->seed, "Random seed")->check(CLI::NonNegativeNumber);
@@ -279,9 +281,11 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       ->add_option("--detector", args->semantic.detector.model,
                    "With --semantic: YOLOv8-format ONNX model run on the frames instead of "
                    "RUN/detections.jsonl")
-      ->needs(semantic);
-  command->add_option("--classes", args->semantic.detector.classes,
-                      "Class-names file of --detector");
+      ->needs(semantic)
+      ->transform(ShippedFile());
+  command
+      ->add_option("--classes", args->semantic.detector.classes, "Class-names file of --detector")
+      ->transform(ShippedFile());
   command
       ->add_option("--class-map", args->semantic.detector.class_map,
                    "YAML map 'model class: semchain class' of --detector's classes (e.g. "

@@ -49,6 +49,9 @@ function(semchain_find_ros)
   set(Python3_EXECUTABLE ${python})
   set(PYTHON_EXECUTABLE ${python})
   set(CATKIN_ENABLE_TESTING OFF)
+  # Without this catkin would install its workspace scripts (setup.bash, env.sh, _setup_util.py)
+  # into the root of the install prefix (cmake/SemchainInstall.cmake says what is installed).
+  set(CATKIN_INSTALL_INTO_PREFIX_ROOT FALSE)
   # catkin sets directory-wide definitions and caches BUILD_SHARED_LIBS ON; both are put back
   # afterwards, and the definitions ROS's headers want go onto semchain_ros_deps only.
   get_directory_property(definitions_before COMPILE_DEFINITIONS)
