@@ -47,12 +47,18 @@ def main() -> int:
 
     rospy.Subscriber("/semchain/objects", MarkerArray, on_objects, queue_size=10)
     rospy.Subscriber("/map", OccupancyGrid, on_map, queue_size=10)
+    # The player waits for the node whenever it falls behind, so that no message is lost on a
+    # loaded machine; the map is saved once the node has taken in the bag's last scan.
+    progress = play_bag.NodeProgress()
     rospy.wait_for_service("/semchain/save_map", timeout=args.timeout)
     save_map = rospy.ServiceProxy("/semchain/save_map", Trigger)
     wall_start = time.monotonic()
-    play_exit = play_bag.play(args.bag, args.rate, rospy.get_name())
+    play_exit = play_bag.play(args.bag, args.rate, rospy.get_name(), progress=progress)
     play_seconds = time.monotonic() - wall_start
-    time.sleep(1.0)  # the last scans are still on their way
+    if not progress.wait_until(play_bag.last_stamp(args.bag, "/scan")):
+        print(json.dumps({"bag": args.bag, "rosbag_play_exit": play_exit, "success": False,
+                          "error": "the node stopped taking in scans before the bag's last"}))
+        return 1
     save_start = time.monotonic()
     saved = save_map()
     save_seconds = time.monotonic() - save_start

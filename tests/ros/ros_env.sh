@@ -20,9 +20,15 @@ ros_start() {
   mkdir -p "$ROS_LOG_DIR"
   trap ros_cleanup EXIT
   roscore -p "$port" >"$ROS_LOG_DIR/roscore.out" 2>&1 &
-  pids+=($!)
-  for _ in $(seq 1 100); do
-    rosparam list >/dev/null 2>&1 && break
+  local roscore_pid=$!
+  pids+=("$roscore_pid")
+  # Up once its parameter server answers, however long a loaded machine takes (ctest's timeout
+  # bounds the wait); a roscore that exited (the port taken meanwhile) is an error.
+  until rosparam list >/dev/null 2>&1; do
+    if ! kill -0 "$roscore_pid" 2>/dev/null; then
+      echo "FAIL: roscore exited: $(tail -n 3 "$ROS_LOG_DIR/roscore.out")"
+      return 1
+    fi
     sleep 0.2
   done
   rosparam set /use_sim_time true
