@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -126,9 +127,10 @@ Result<nlohmann::json> Accuracy(const std::vector<StampedPose>& trajectory,
     const Result<eval::RelationErrors> errors =
         eval::EvaluateRelations(trajectory, prepared.relations);
     if (!errors.ok()) return errors.status();
-    *text = "relation error " + std::to_string(errors->trans_mean_m) + " ± " +
-            std::to_string(errors->trans_std_m) + " m, " + std::to_string(errors->rot_mean_deg) +
-            "°";
+    char buffer[128];
+    std::snprintf(buffer, sizeof(buffer), "relation error %.4f ± %.4f m, %.3f° (%zu relations)",
+                  errors->trans_mean_m, errors->trans_std_m, errors->rot_mean_deg, errors->matched);
+    *text = buffer;
     return nlohmann::json::parse(eval::RelationErrorsToJson(*errors));
   }
   std::vector<StampedPose> truth = prepared.truth;
@@ -317,6 +319,10 @@ void AddBenchClosures(CLI::App& bench, int& exit_code) {
   command
       ->add_option("--max-bridge", args->reference_options.max_bridge_meters,
                    "Odometry travel (m) a scan without a reference of its own may be bridged")
+      ->capture_default_str();
+  command
+      ->add_option("--max-bridge-turn", args->reference_options.max_bridge_radians,
+                   "...and turning (rad)")
       ->capture_default_str();
   command->add_option("--out", args->out, "Output folder")->required();
   command->callback([args, &exit_code] { exit_code = bench_closures::RunBenchClosures(*args); });

@@ -64,6 +64,12 @@ TEST(ClosureReferenceTest, TimedPosesBridgedByTheOdometry) {
   // Half a metre of bridge allowed: scan 78 is a metre from its nearest reference pose.
   options.max_bridge_meters = 0.5;
   EXPECT_FALSE(MakeTimedReference(poses, drive.scans, options)->Relative(1, 78).has_value());
+  // Scan 19 is 1.5 m after the reference pose at scan 16 and half a metre before the one at
+  // scan 20, which has turned the first corner: a quarter turn is too much turning to bridge.
+  EXPECT_FALSE(MakeTimedReference(poses, drive.scans, options)->Relative(0, 19).has_value());
+  options.max_bridge_radians = 2.0;
+  ExpectPose(MakeTimedReference(poses, drive.scans, options)->Relative(0, 19),
+             drive.truth[0].Between(drive.truth[19]));
 }
 
 TEST(ClosureReferenceTest, RelationsJoinedWithinTheErrorBudget) {

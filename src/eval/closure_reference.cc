@@ -8,6 +8,7 @@
 #include <queue>
 #include <utility>
 
+#include "core/angles.h"
 #include "core/check.h"
 
 namespace semchain::eval {
@@ -20,10 +21,14 @@ class ScanIndex {
     SEMCHAIN_CHECK(scans_.timestamps.size() == scans_.odometry.size());
     for (std::size_t i = 0; i < scans_.timestamps.size(); ++i) {
       by_time_.emplace_back(scans_.timestamps[i], static_cast<int>(i));
-      travel_.push_back(i == 0 ? 0.0
-                               : travel_.back() + (scans_.odometry[i].translation() -
-                                                   scans_.odometry[i - 1].translation())
-                                                      .norm());
+      if (i == 0) {
+        travel_.push_back(0.0);
+        turn_.push_back(0.0);
+        continue;
+      }
+      const Pose2 step = scans_.odometry[i - 1].Between(scans_.odometry[i]);
+      travel_.push_back(travel_.back() + step.translation().norm());
+      turn_.push_back(turn_.back() + std::abs(NormalizeAngle(step.theta)));
     }
     std::sort(by_time_.begin(), by_time_.end());
   }
@@ -47,6 +52,13 @@ class ScanIndex {
   double Travel(int a, int b) const {
     return std::abs(travel_[static_cast<std::size_t>(b)] - travel_[static_cast<std::size_t>(a)]);
   }
+  double Turn(int a, int b) const {
+    return std::abs(turn_[static_cast<std::size_t>(b)] - turn_[static_cast<std::size_t>(a)]);
+  }
+  // Whether the odometry may bridge scans 'a' and 'b' under 'options'.
+  bool Bridges(int a, int b, const ClosureReferenceOptions& options) const {
+    return Travel(a, b) <= options.max_bridge_meters && Turn(a, b) <= options.max_bridge_radians;
+  }
   // Scan 'to' in the frame of scan 'from' by the odometry.
   Pose2 Odometry(int from, int to) const {
     return scans_.odometry[static_cast<std::size_t>(from)].Between(
@@ -59,6 +71,7 @@ class ScanIndex {
   ScanTrack scans_;
   std::vector<std::pair<double, int>> by_time_;
   std::vector<double> travel_;
+  std::vector<double> turn_;
 };
 
 // The anchored scans just before and after 'i' (sorted 'anchors'), -1 where none.
@@ -106,7 +119,7 @@ class TimedReference : public ClosureReference {
     const auto [before, after] = Neighbours(anchors_, scan);
     int nearest = -1;
     for (const int anchor : {before, after}) {
-      if (anchor < 0 || scans_.Travel(anchor, scan) > options_.max_bridge_meters) continue;
+      if (anchor < 0 || !scans_.Bridges(anchor, scan, options_)) continue;
       if (nearest < 0 || scans_.Travel(anchor, scan) < scans_.Travel(nearest, scan)) {
         nearest = anchor;
       }
@@ -198,9 +211,8 @@ class RelationReference : public ClosureReference {
   }
 
   std::optional<double> BridgeCost(int a, int b) const {
-    const double travel = scans_.Travel(a, b);
-    if (travel > options_.max_bridge_meters) return std::nullopt;
-    return options_.bridge_sigma_meters + options_.bridge_sigma_per_meter * travel;
+    if (!scans_.Bridges(a, b, options_)) return std::nullopt;
+    return options_.bridge_sigma_meters + options_.bridge_sigma_per_meter * scans_.Travel(a, b);
   }
 
   // 'scan' itself when it has a relation, else its neighbours among those that do, within a

@@ -13,8 +13,8 @@
 // with the scans by index (a corrected log's own poses), timed reference poses (a simulated
 // run's truth, the Killian reference), and Kümmerle relations. Where a scan has no reference
 // of its own, the log's odometry bridges it to the nearest scan that has one, over a short
-// stretch only (its error grows with the travel); a pair the reference cannot join within
-// that is left unlabelled.
+// stretch only (its error grows with the travel and the turning); a pair the reference cannot
+// join within that is left unlabelled.
 namespace semchain::eval {
 
 // The log's scans as the reference joins them: their timestamps and odometry, in log order.
@@ -26,8 +26,11 @@ struct ScanTrack {
 struct ClosureReferenceOptions {
   // A reference timestamp belongs to the scan stamped within this many seconds of it.
   double timestamp_tolerance_s = 1e-3;
-  // The odometry bridges at most this much travel (metres, summed along the log)...
+  // The odometry bridges at most this much travel (metres, summed along the log) and this much
+  // turning (radians, summed: a robot turning on the spot travels nowhere, but its odometry's
+  // heading error grows with the turn)...
   double max_bridge_meters = 2.0;
+  double max_bridge_radians = 0.2;
   // ...and the relation reference joins two scans only along a path whose error, estimated as
   // relation_sigma_meters a relation plus bridge_sigma_meters + bridge_sigma_per_meter × travel
   // a bridge, stays within max_path_error_meters (well inside the 0.3 m a candidate may be off).
@@ -49,14 +52,15 @@ class ClosureReference {
 std::unique_ptr<ClosureReference> MakeIndexedReference(std::vector<Pose2> poses);
 
 // Timed reference poses, each at the scan stamped with its time (others are ignored); a scan
-// without one takes the nearest one (by travel) within max_bridge_meters, moved by the
-// odometry between them.
+// without one takes the nearest one (by travel) within max_bridge_meters and
+// max_bridge_radians, moved by the odometry between them.
 std::unique_ptr<ClosureReference> MakeTimedReference(const std::vector<StampedPose>& reference,
                                                      ScanTrack scans,
                                                      const ClosureReferenceOptions& options = {});
 
 // Relations, each between the two scans stamped with its times (others are ignored); two scans
-// are joined by the path of relations and odometry bridges (max_bridge_meters each, between
+// are joined by the path of relations and odometry bridges (within max_bridge_meters and
+// max_bridge_radians each, between
 // scans of the log that are next to each other among those with a relation) of least
 // estimated error, when that is within max_path_error_meters.
 std::unique_ptr<ClosureReference> MakeRelationReference(
