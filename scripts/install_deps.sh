@@ -10,6 +10,9 @@ packages=(
   # src/detection reads and rewrites ONNX models (onnx::ModelProto) before OpenCV DNN runs them.
   libonnx-dev libprotobuf-dev
   clang-format
+  # scripts/test_sanitizers.sh (run by run_tests.sh) and scripts/fuzz.sh: clang, its sanitizer
+  # runtimes and llvm-symbolizer (reports with function names).
+  clang libclang-rt-14-dev llvm-14
   # train/: the detector's training package and its tests (Debian's PyTorch 1.13, CPU).
   python3-torch python3-onnx python3-opencv python3-numpy python3-yaml python3-tqdm python3-pytest
 )
