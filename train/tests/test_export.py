@@ -69,7 +69,7 @@ def test_an_export_opencv_runs_differently_replaces_nothing(tmp_path: Path, monk
     monkeypatch.setattr(export, "load_model_and_names", lambda weights: (model, ["a", "b", "c", "d", "e", "f", "g", "h", "i", "j"]))
     out = tmp_path / "m.onnx"
     out.write_bytes(b"the previous export")
-    args = argparse.Namespace(weights=tmp_path / "w.pt", out=out, input=SIZE, no_check=False)
+    args = argparse.Namespace(weights=tmp_path / "w.pt", out=out, input=SIZE, no_check=False, half=False)
     monkeypatch.setattr(export, "check_with_opencv", lambda *a, **k: 0.01)
     with pytest.raises(ValueError, match="differs from PyTorch by 0.01 of the largest output"):
         export.run(args)
