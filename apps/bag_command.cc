@@ -33,7 +33,9 @@ void AddExport(CLI::App& bag, int& exit_code) {
     ros1::BagExportOptions options;
   };
   auto args = std::make_shared<Args>();
-  command->add_option("RUN", args->run, "Run directory (semchain simulate or bag import)")
+  command
+      ->add_option("RUN", args->run,
+                   "Run directory (semchain simulate or bag import), or a CARMEN log (.clf, .gz)")
       ->required();
   command->add_option("--out", args->out, "Bag file to write (replaced atomically)")->required();
   command->add_flag("--no-images", args->no_images,
@@ -61,6 +63,12 @@ void AddExport(CLI::App& bag, int& exit_code) {
       std::printf(" (stamps + %lld s)", static_cast<long long>(summary->stamp_offset_seconds));
     }
     std::printf("\n");
+    if (summary->restamped_scans > 0) {
+      std::fprintf(stderr,
+                   "semchain: warning: %zu scans were stamped at or before the scan before them; "
+                   "stamped 1 ms after it, to keep the log's order\n",
+                   summary->restamped_scans);
+    }
     exit_code = 0;
   });
 }

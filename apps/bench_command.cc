@@ -498,6 +498,7 @@ void AddBenchCommand(CLI::App& app, int& exit_code) {
   AddBenchLocalize(*bench, exit_code);
   AddBenchReloc(*bench, exit_code);
   AddBenchDetector(*bench, exit_code);
+  AddBenchTrack(*bench, exit_code);
 }
 
 }  // namespace semchain::app

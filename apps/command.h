@@ -29,6 +29,8 @@ void AddBenchReloc(CLI::App& bench, int& exit_code);
 void AddBenchClosures(CLI::App& bench, int& exit_code);
 // `bench detector` (bench_detector_command.cc), registered by AddBenchCommand.
 void AddBenchDetector(CLI::App& bench, int& exit_code);
+// `bench track` (bench_track_command.cc), registered by AddBenchCommand.
+void AddBenchTrack(CLI::App& bench, int& exit_code);
 
 // Prints "semchain: error: <message>" on one line to stderr and returns the exit code 1.
 int ReportError(const Status& status);

@@ -84,6 +84,13 @@ bool Amcl::ProcessScan(const LaserScan& scan, const Pose2& odometry, const Pose2
   return true;
 }
 
+void Amcl::Recenter(const Pose2& pose) {
+  SEMCHAIN_CHECK(!particles_.empty());  // initialise first
+  const Pose2 correction = pose * estimate_.pose.Inverse();
+  for (Particle& p : particles_) p.pose = correction * p.pose;
+  UpdateEstimate();
+}
+
 void Amcl::MotionUpdate(const Pose2& odometry) {
   const OdometryMotion u = OdometryMotion::Between(*last_odometry_, odometry);
   const OdometryMotionModel::Sigmas sigmas = motion_model_.SigmasOf(u);

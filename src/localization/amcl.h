@@ -79,6 +79,11 @@ class Amcl {
   // resampling, and returns true; otherwise returns false and changes nothing.
   bool ProcessScan(const LaserScan& scan, const Pose2& odometry, const Pose2& laser_offset);
 
+  // Moves every particle rigidly (the cloud keeps its shape and weights) so that the estimate
+  // lies at 'pose': each particle p becomes pose ⊕ (estimate⁻¹ ⊕ p). A scan matched against the
+  // map knows the pose better than the cloud's mean (scan_tracking.h).
+  void Recenter(const Pose2& pose);
+
   // The current estimate (valid after an initialisation).
   AmclEstimate Estimate() const { return estimate_; }
   const std::vector<Particle>& particles() const { return particles_; }

@@ -11,6 +11,14 @@ namespace semchain::localization {
 
 enum class LaserModelType { kLikelihoodField, kBeam };
 
+// Which beams of a scan the laser model reads (max_beams of them).
+//   kEvenly   nav2: every ⌊(n − 1) / (max_beams − 1)⌋-th beam from the first, no-return readings
+//             included (the likelihood field skips them, the beam model scores them z_max)
+//   kReturns  max_beams spaced evenly over the beams that have a return: a lidar whose readings
+//             are mostly empty (a Neato's: 70 % zeros) keeps max_beams beams on obstacles
+//             instead of a third of them
+enum class BeamSelection { kEvenly, kReturns };
+
 // The weight a particle gets from a hypothesis list (seed 000 §3.2): see PosePrior.
 struct PosePriorOptions {
   // A particle far from every hypothesis keeps this fraction of its weight: it loses against
@@ -51,7 +59,8 @@ struct AmclOptions {
 
   // Laser model (nav2 laser_model_type "likelihood_field" or "beam").
   LaserModelType laser_model_type = LaserModelType::kLikelihoodField;
-  int max_beams = 60;                      // beams used per scan, evenly spaced
+  int max_beams = 60;  // beams used per scan (beam_selection)
+  BeamSelection beam_selection = BeamSelection::kEvenly;
   double laser_max_range = 100.0;          // <= 0: the scan's own max range
   double laser_min_range = -1.0;           // <= 0: none; shorter readings count as max range
   double laser_likelihood_max_dist = 2.0;  // distance field cap (likelihood field)

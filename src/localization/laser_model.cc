@@ -12,6 +12,40 @@
 
 namespace semchain::localization {
 
+namespace {
+
+// The reading of beam i as the models read it: at or below the minimum range, non-finite or
+// non-positive count as max range (no return), as nav2 counts them.
+double UsableRange(const LaserScan& scan, std::size_t i, double range_max,
+                   const AmclOptions& options) {
+  const double range = scan.ranges[i];
+  if (!std::isfinite(range) || range <= 0.0 ||
+      (options.laser_min_range > 0.0 && range <= options.laser_min_range)) {
+    return range_max;
+  }
+  return range;
+}
+
+// The indices of the beams to read: evenly spaced over all beams (nav2) or over the returns.
+std::vector<std::size_t> BeamIndices(const LaserScan& scan, double range_max,
+                                     const AmclOptions& options) {
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (options.beam_selection == BeamSelection::kEvenly ||
+        UsableRange(scan, i, range_max, options) < range_max) {
+      candidates.push_back(i);
+    }
+  }
+  const int n = static_cast<int>(candidates.size());
+  std::vector<std::size_t> indices;
+  if (n == 0) return indices;
+  const int step = std::max(1, (n - 1) / (options.max_beams - 1));
+  for (int k = 0; k < n; k += step) indices.push_back(candidates[static_cast<std::size_t>(k)]);
+  return indices;
+}
+
+}  // namespace
+
 LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
                        const AmclOptions& options) {
   LaserBeams beams;
@@ -19,17 +53,10 @@ LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
   beams.range_max = options.laser_max_range > 0.0
                         ? std::min(scan.max_range, options.laser_max_range)
                         : scan.max_range;
-  const int n = static_cast<int>(scan.size());
-  if (n == 0) return beams;
-  const int step = std::max(1, (n - 1) / (options.max_beams - 1));
-  for (int i = 0; i < n; i += step) {
-    double range = scan.ranges[static_cast<std::size_t>(i)];
-    if (!std::isfinite(range) || range <= 0.0 ||
-        (options.laser_min_range > 0.0 && range <= options.laser_min_range)) {
-      range = beams.range_max;
-    }
+  for (const std::size_t i : BeamIndices(scan, beams.range_max, options)) {
+    const double range = UsableRange(scan, i, beams.range_max, options);
     beams.ranges.push_back(range);
-    const double bearing = scan.BeamAngle(static_cast<std::size_t>(i));
+    const double bearing = scan.BeamAngle(i);
     beams.bearings.push_back(bearing);
     beams.directions.emplace_back(std::cos(bearing), std::sin(bearing));
     if (range < beams.range_max) {

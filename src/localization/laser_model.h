@@ -18,7 +18,8 @@
 namespace semchain::localization {
 
 // The beams of one scan that the models use: at most max_beams, evenly spaced as nav2 picks
-// them (every ⌊(n − 1) / (max_beams − 1)⌋-th beam from the first).
+// them (every ⌊(n − 1) / (max_beams − 1)⌋-th beam from the first) or over the returns only
+// (AmclOptions::beam_selection).
 struct LaserBeams {
   Pose2 laser_offset;  // laser pose in the robot frame
   double range_max = 0.0;
@@ -36,8 +37,9 @@ struct LaserBeams {
   std::vector<double> hit_ranges, hit_x, hit_y;
 };
 
-// Selects the beams of 'scan' for 'options' (max_beams, laser_min_range, laser_max_range);
-// readings at or below the minimum range, non-finite or non-positive count as max range.
+// Selects the beams of 'scan' for 'options' (max_beams, beam_selection, laser_min_range,
+// laser_max_range); readings at or below the minimum range, non-finite or non-positive count as
+// max range.
 LaserBeams SelectBeams(const LaserScan& scan, const Pose2& laser_offset,
                        const AmclOptions& options);
 

@@ -123,5 +123,37 @@ TEST(SelectBeamsTest, EvenlySpacedAsNav2) {
   EXPECT_DOUBLE_EQ(beams.range_max, 30.0);
 }
 
+// A Neato-like scan: 361 beams, only every third with a return. Evenly spaced beams keep the
+// empty ones (the likelihood field skips them: a third of max_beams is used); selecting among
+// the returns reads max_beams beams, all returns, spread over the whole scan.
+TEST(SelectBeamsTest, AmongReturnsKeepsMaxBeamsReturns) {
+  LaserScan scan;
+  scan.max_range = 5.0;
+  scan.angle_min = -kPi;
+  scan.angle_increment = 2.0 * kPi / 360;
+  scan.ranges.assign(361, 0.0);
+  for (std::size_t i = 0; i < scan.ranges.size(); i += 3)
+    scan.ranges[i] = 1.0 + 0.001 * static_cast<double>(i);
+  AmclOptions options;
+  const LaserBeams evenly = SelectBeams(scan, Pose2(), options);
+  EXPECT_EQ(evenly.ranges.size(), 61u);  // step ⌊360 / 59⌋ = 6: beams 0, 6, ..., 360
+  EXPECT_EQ(evenly.hits, 61);            // 6 is a multiple of 3: by chance all returns here
+  scan.ranges.assign(361, 0.0);
+  for (std::size_t i = 1; i < scan.ranges.size(); i += 3)
+    scan.ranges[i] = 1.0 + 0.001 * static_cast<double>(i);
+  EXPECT_EQ(SelectBeams(scan, Pose2(), options).hits, 0);  // the same beams, now all empty
+
+  options.beam_selection = BeamSelection::kReturns;
+  const LaserBeams returns = SelectBeams(scan, Pose2(), options);
+  // 120 returns (beams 1, 4, ..., 358): every ⌊119 / 59⌋ = 2nd of them.
+  ASSERT_EQ(returns.ranges.size(), 60u);
+  EXPECT_EQ(returns.hits, 60);
+  EXPECT_DOUBLE_EQ(returns.bearings[0], scan.BeamAngle(1));
+  EXPECT_DOUBLE_EQ(returns.bearings[1], scan.BeamAngle(7));
+  EXPECT_DOUBLE_EQ(returns.ranges[1], 1.007);
+  EXPECT_DOUBLE_EQ(returns.bearings[59], scan.BeamAngle(355));
+  for (const double r : returns.ranges) EXPECT_LT(r, returns.range_max);
+}
+
 }  // namespace
 }  // namespace semchain::localization

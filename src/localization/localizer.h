@@ -20,6 +20,7 @@
 #include "localization/observation_memory.h"
 #include "localization/prelocalization.h"
 #include "localization/scan_match_relocalizer.h"
+#include "localization/scan_tracking.h"
 #include "localization/sighting.h"
 #include "mapping/map_io.h"
 #include "semantic/semantic_map.h"
@@ -45,6 +46,11 @@
 //   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
 // The semantic methods pre-localize from every object seen during the last turn (see
 // ObservationMemory). After a scan matcher has found the robot, AMCL tracks it.
+// Whichever the method, once the robot is found (a scan matcher's lock, a converged filter, or
+// an initial pose given) every scan is also matched against the map from the pose odometry
+// predicts for it (scan_tracking.h); a matched scan gives the pose, and the filter's particles
+// are moved onto it at its updates (LocalizerOptions::scan_tracking; off: AMCL alone tracks, as
+// nav2 does).
 //
 //   LocalizerMap map(occupancy, semantic, AmclOptions(), PreLocalizationOptions(),
 //                    ScanMatchRelocalizerOptions());
@@ -127,6 +133,8 @@ struct LocalizerOptions {
   bool decide_on_new_evidence = true;
   // The laser fit a decided place needs (DecisionGateOptions::min_laser_score).
   double decision_min_laser_score = 0.55;
+  // Scan-to-map tracking once the robot is found (see the class comment).
+  ScanTrackingOptions scan_tracking;
   // Seeds the filter's random stream.
   std::uint64_t seed = 1;
 };
@@ -163,6 +171,11 @@ struct LocalizerStatistics {
   int undecided_prelocalizations = 0;
   int lock_corrections = 0;  // tracked poses moved to a place that explains more objects
   int lock_rechecks = 0;     // lock re-checks searched (semantic-scanmatch)
+  // Scan-to-map tracking: scans matched (the pose taken from the match), and of those tried,
+  // how many needed the window search.
+  int scan_matches = 0;
+  int scan_match_tries = 0;
+  int scan_match_searches = 0;
 };
 
 class Localizer {
@@ -241,6 +254,12 @@ class Localizer {
   std::optional<RelocalizationResult> Relocalize(const StampedScan& scan,
                                                  const LocalizerFrame* frame);
   int Track(const StampedScan& scan);
+  // Scan tracking (scan_tracking.h): whether it may start now (the robot found), its
+  // predictions for 'scan', and its end.
+  bool ScanTrackingMayStart() const;
+  std::vector<Pose2> ScanTrackingPredictions(const StampedScan& scan,
+                                             const std::optional<Pose2>& odometry_prediction) const;
+  void StopScanTracking();
   void ResetSearch();
 
   const LocalizerMap& map_;
@@ -254,6 +273,13 @@ class Localizer {
   std::optional<Pose2> estimate_;
   std::optional<Sighting> filter_;  // the filter's pose at its last update, and the odometry then
   bool seeded_ = false;             // semantic-amcl: the particles came from hypotheses
+  bool pose_given_ = false;         // the filter was started at an initial pose (SetInitialPose)
+  // Scan tracking: on (scans are matched against the map), scans missed in a row, and the last
+  // two matched poses with their scans' stamps (for the prediction carrying on their motion).
+  bool scan_tracking_ = false;
+  int scan_misses_ = 0;
+  double typical_score_ = 0.0;  // the running mean of the matches' scores
+  std::vector<std::pair<double, Pose2>> recent_matches_;
   std::optional<Pose2> start_odometry_;
   double last_heading_ = 0.0;
   double turned_ = 0.0;  // radians turned (odometry) before a scan matcher found the robot

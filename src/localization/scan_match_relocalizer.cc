@@ -68,9 +68,14 @@ ScanMatchRelocalizer::ScanMatchRelocalizer(const mapping::MapImage& map,
 
 std::vector<Eigen::Vector2d> ScanMatchRelocalizer::MatchPoints(const LaserScan& scan,
                                                                const Pose2& laser_offset) const {
+  return MatchPoints(scan, laser_offset, options_.min_point_spacing_meters);
+}
+
+std::vector<Eigen::Vector2d> ScanMatchRelocalizer::MatchPoints(const LaserScan& scan,
+                                                               const Pose2& laser_offset,
+                                                               double min_spacing_meters) const {
   std::vector<Eigen::Vector2d> points;
-  const double spacing_squared =
-      options_.min_point_spacing_meters * options_.min_point_spacing_meters;
+  const double spacing_squared = min_spacing_meters * min_spacing_meters;
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (!scan.IsReturn(i) || scan.ranges[i] > options_.max_range_meters) continue;
     const double a = scan.BeamAngle(i);
@@ -109,7 +114,11 @@ Pose2 ScanMatchRelocalizer::Refine(const std::vector<Eigen::Vector2d>& points,
 
 RelocalizationResult ScanMatchRelocalizer::RelocalizeInWindow(
     const LaserScan& scan, const Pose2& laser_offset, const mapping::SearchWindow& window) const {
-  const std::vector<Eigen::Vector2d> points = MatchPoints(scan, laser_offset);
+  return RelocalizeInWindow(MatchPoints(scan, laser_offset), window);
+}
+
+RelocalizationResult ScanMatchRelocalizer::RelocalizeInWindow(
+    const std::vector<Eigen::Vector2d>& points, const mapping::SearchWindow& window) const {
   return Finish(points, matcher_.Match(points, window, options_.min_score));
 }
 

@@ -86,6 +86,9 @@ class ScanMatchRelocalizer {
 
   // The returns of 'scan' in the robot frame (laser at 'laser_offset'), range-limited and thinned.
   std::vector<Eigen::Vector2d> MatchPoints(const LaserScan& scan, const Pose2& laser_offset) const;
+  // The same thinned to 'min_spacing_meters' instead of the options' min_point_spacing_meters.
+  std::vector<Eigen::Vector2d> MatchPoints(const LaserScan& scan, const Pose2& laser_offset,
+                                           double min_spacing_meters) const;
 
   // Searches a narrow window around each hypothesis, then, unless that settled it, wider ones
   // (up to 3σ of its covariance, clamped), and returns the best match over all of them, refined.
@@ -96,6 +99,8 @@ class ScanMatchRelocalizer {
                                   const std::vector<PoseHypothesis>& priors) const;
   // Searches the given window.
   RelocalizationResult RelocalizeInWindow(const LaserScan& scan, const Pose2& laser_offset,
+                                          const mapping::SearchWindow& window) const;
+  RelocalizationResult RelocalizeInWindow(const std::vector<Eigen::Vector2d>& points,
                                           const mapping::SearchWindow& window) const;
   // Searches the whole map and every heading (no prior).
   RelocalizationResult RelocalizeGlobal(const LaserScan& scan, const Pose2& laser_offset) const;

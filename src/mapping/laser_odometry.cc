@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "mapping/ray_casting.h"
+#include "mapping/required_matches.h"
 
 namespace semchain::mapping {
 
@@ -69,7 +70,9 @@ Pose2 LaserOdometry::Add(const StampedScan& scan, const PreparedScan& prepared) 
     Pose2 prediction;
     const MatchResult match =
         MatchBest(field, sparse, pose, velocity, options_.matcher, &prediction);
-    if (match.evaluation.matched * options_.match_beam_step >= options_.min_matched_points) {
+    const int available = static_cast<int>(sparse.size()) * options_.match_beam_step;
+    if (match.evaluation.matched * options_.match_beam_step >=
+        RequiredMatches(options_.min_matched_points, available)) {
       pose = match.pose;
       if (options_.refinement.enabled) {
         const PosePrior prior{prediction, prior_model_.Sigmas(last.Between(prediction))};

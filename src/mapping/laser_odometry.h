@@ -26,7 +26,8 @@ namespace semchain::mapping {
 struct LaserOdometryOptions {
   bool enabled = true;  // false: the RBPF uses the wheel odometry as logged (GMapping)
   int scans_per_submap = 80;
-  // A match with fewer endpoints on obstacles is rejected: the wheel odometry is used instead.
+  // A match with fewer endpoints on obstacles (or than a third of the scan's returns, when that is
+  // fewer: RequiredMatches) is rejected: the wheel odometry is used instead.
   int min_matched_points = 60;
   double match_max_range_meters = 30.0;
   int match_beam_step = 3;  // hill climbing uses every n-th return (the refinement all)

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/angles.h"
+#include "mapping/required_matches.h"
 
 namespace semchain::mapping {
 
@@ -50,7 +51,9 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
                                                            : prediction;
     const MatchResult match = MatchWithHeadingSearch(field, points, start, matcher,
                                                      options.heading_search, motion_sigmas.z());
-    evaluation.matched = match.evaluation.matched >= options.min_matched_points;
+    evaluation.matched =
+        match.evaluation.matched >=
+        RequiredMatches(options.min_matched_points, static_cast<int>(points.size()));
     if (evaluation.matched) {
       evaluation.mode = match.pose;
       if (options.mode_refinement.enabled) {

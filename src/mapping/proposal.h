@@ -41,8 +41,9 @@ struct ProposalOptions {
   // Multiplies log p(z | m, x) in the proposal (1 = the likelihood field as it is). Lower values
   // widen the proposal: its noise then accumulates into drift (mit-csail: 0.1 gave degrees).
   double observation_gain = 1.0;
-  // A match with fewer endpoints on obstacles is not trusted: the proposal then centres on the
-  // odometry prediction and samples a window as wide as the motion noise.
+  // A match with fewer endpoints on obstacles (or than a third of the points matched, when that
+  // is fewer: RequiredMatches) is not trusted: the proposal then centres on the odometry
+  // prediction and samples a window as wide as the motion noise.
   int min_matched_points = 30;
   // When no particle's match is trusted — the whole filter lost the scan: a loop closing beyond
   // hill climbing's reach, a turn whose wheel odometry stalled — each particle's match starts

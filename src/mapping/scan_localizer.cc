@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/check.h"
+#include "mapping/required_matches.h"
 
 namespace semchain::mapping {
 
@@ -52,7 +53,9 @@ LocalizationResult LocalizeScan(const LikelihoodField& field, const PreparedScan
   const MatchPoints sparse =
       SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step);
   const MatchResult match = HillClimb(field, sparse, prior, options.matcher);
-  if (match.evaluation.matched * options.match_beam_step < options.min_matched_points) {
+  const int available = static_cast<int>(sparse.size()) * options.match_beam_step;
+  if (match.evaluation.matched * options.match_beam_step <
+      RequiredMatches(options.min_matched_points, available)) {
     return {prior, false};
   }
   if (!options.refinement.enabled) return {match.pose, true};

@@ -26,7 +26,8 @@ struct EveryScanOptions {
   HillClimbingOptions matcher{0.02, 0.02, 7, 400};
   // Gauss-Newton point-to-surface refinement after hill climbing.
   SurfaceRefinementOptions refinement;
-  // A scan whose match finds fewer endpoints on obstacles keeps its interpolated pose.
+  // A scan whose match finds fewer endpoints on obstacles (or than a third of its returns, when
+  // that is fewer: RequiredMatches) keeps its interpolated pose.
   int min_matched_points = 50;
   double match_max_range_meters = 30.0;
   int match_beam_step = 2;  // hill climbing uses every n-th return (the refinement all)
@@ -52,7 +53,7 @@ struct LocalizationResult {
 };
 
 // Scan-matches 'scan' against 'field' starting from 'prior'; keeps the prior when the match
-// finds fewer than 'min_matched_points' endpoints on obstacles.
+// finds fewer than RequiredMatches(min_matched_points, returns) endpoints on obstacles.
 LocalizationResult LocalizeScan(const LikelihoodField& field, const PreparedScan& scan,
                                 const Pose2& prior, const EveryScanOptions& options);
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
+#include <system_error>
 #include <vector>
 
 #include "core/progress_bar.h"
@@ -33,7 +34,26 @@ struct Event {
   std::size_t index;  // into RunContents' lasers, truth or frames
 };
 
-Result<std::vector<Event>> MakeEvents(const RunContents& run, std::int64_t offset) {
+// The least gap between consecutive scans' stamps in the bag.
+constexpr double kMinScanGapSeconds = 1e-3;
+
+// The scans' stamps, each at least kMinScanGapSeconds after the one before ('restamped' counts
+// those moved).
+std::vector<double> MonotonicScanStamps(const RunContents& run, std::size_t* restamped) {
+  std::vector<double> stamps;
+  for (const carmen::Laser& laser : run.lasers) {
+    double stamp = laser.stamp.timestamp;
+    if (!stamps.empty() && stamp < stamps.back() + kMinScanGapSeconds) {
+      stamp = stamps.back() + kMinScanGapSeconds;
+      ++*restamped;
+    }
+    stamps.push_back(stamp);
+  }
+  return stamps;
+}
+
+Result<std::vector<Event>> MakeEvents(const RunContents& run, std::int64_t offset,
+                                      std::size_t* restamped) {
   std::vector<Event> events;
   const auto add = [&](double stamp, Event::Kind kind, std::size_t index) -> Status {
     Result<ros::Time> time = ToRosTime(stamp, offset);
@@ -41,8 +61,9 @@ Result<std::vector<Event>> MakeEvents(const RunContents& run, std::int64_t offse
     events.push_back({*time, kind, index});
     return Status::Ok();
   };
+  const std::vector<double> scan_stamps = MonotonicScanStamps(run, restamped);
   for (std::size_t i = 0; i < run.lasers.size(); ++i) {
-    SEMCHAIN_RETURN_IF_ERROR(add(run.lasers[i].stamp.timestamp, Event::Kind::kScan, i));
+    SEMCHAIN_RETURN_IF_ERROR(add(scan_stamps[i], Event::Kind::kScan, i));
   }
   for (std::size_t i = 0; i < run.truth.size(); ++i) {
     SEMCHAIN_RETURN_IF_ERROR(add(run.truth[i].timestamp, Event::Kind::kTruth, i));
@@ -200,14 +221,29 @@ RunInfo MakeRunInfo(const RunContents& run, std::int64_t offset) {
   return info;
 }
 
+// A CARMEN log alone as a run: its scans with their odometry.
+Result<RunContents> LoadLogAsRun(const fs::path& log_path) {
+  Result<carmen::Log> log = carmen::ReadLog(log_path);
+  if (!log.ok()) return log.status();
+  RunContents run;
+  for (const carmen::Laser* laser : log->Lasers()) run.lasers.push_back(*laser);
+  if (run.lasers.empty()) {
+    return Status::Error(log_path.string() + ": no laser scans (FLASER or ROBOTLASER1 lines)");
+  }
+  return run;
+}
+
 }  // namespace
 
 Result<BagExportSummary> ExportRunToBag(const fs::path& run_dir, const fs::path& bag_path,
                                         const BagExportOptions& options) {
-  Result<RunContents> run = LoadRunContents(run_dir);
+  std::error_code error;
+  Result<RunContents> run =
+      fs::is_regular_file(run_dir, error) ? LoadLogAsRun(run_dir) : LoadRunContents(run_dir);
   if (!run.ok()) return run.status();
   const std::int64_t offset = ExportStampOffset(run->EarliestStamp());
-  Result<std::vector<Event>> events = MakeEvents(*run, offset);
+  std::size_t restamped = 0;
+  Result<std::vector<Event>> events = MakeEvents(*run, offset, &restamped);
   if (!events.ok()) return events.status().WithContext(run_dir.string());
   Result<std::unique_ptr<BagWriter>> bag = BagWriter::Create(bag_path, options.compression);
   if (!bag.ok()) return bag.status();
@@ -223,6 +259,7 @@ Result<BagExportSummary> ExportRunToBag(const fs::path& run_dir, const fs::path&
   SEMCHAIN_RETURN_IF_ERROR((*bag)->Finish());
   BagExportSummary summary = exporter.summary();
   summary.stamp_offset_seconds = offset;
+  summary.restamped_scans = restamped;
   return summary;
 }
 

@@ -13,6 +13,11 @@
 // slam_gmapping). Per scan: /scan, /tf (odom → base_link) and /odom at the scan's stamp; per
 // truth pose: /semchain/truth; per camera frame: the colour and depth images, camera_info and
 // its detections.jsonl record. /tf_static and /semchain/run_info once, latched, at the start.
+// RUN may also be a CARMEN log itself (a raw data set's .clf or .clf.gz): its scans and odometry
+// alone, as a run directory holding only log.clf gives them.
+// The scans keep the log's order: a scan stamped at or before the scan before it (the Intel
+// log's clock steps back by up to 0.9 s 631 times) is stamped 1 ms after that one, so that a
+// player, and tf, see the odometry in the order the robot drove.
 namespace semchain::ros1 {
 
 struct BagExportOptions {
@@ -30,9 +35,11 @@ struct BagExportSummary {
   std::size_t images = 0;  // colour and depth images written
   std::size_t messages = 0;
   std::int64_t stamp_offset_seconds = 0;  // added to the run's stamps (bag_time.h)
+  std::size_t restamped_scans = 0;        // stamped after the scan before them (see above)
 };
 
-// Writes the run in 'run_dir' to the bag 'bag_path' (replaced atomically when it exists).
+// Writes the run in 'run_dir' (a run directory or a CARMEN log) to the bag 'bag_path' (replaced
+// atomically when it exists).
 Result<BagExportSummary> ExportRunToBag(const std::filesystem::path& run_dir,
                                         const std::filesystem::path& bag_path,
                                         const BagExportOptions& options = {});

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <variant>
+#include <vector>
 
 #include "core/angles.h"
 #include "core/atomic_file.h"
@@ -241,6 +243,54 @@ TEST(BagRoundTripTest, NoImagesKeepsDetectionsAndTheCamera) {
   ExpectSameLog(run, dir / "imported");
   ExpectSameCamera(run, dir / "imported");
   ExpectSameDetections(run, dir / "imported", false);
+  fs::remove_all(dir);
+}
+
+// A raw data set's log given as it is (a file, no run directory), whose clock steps back once
+// (as the Intel log's does 631 times): the bag keeps the log's order, the scan stamped back
+// going 1 ms after the one before it, and imports as the same scans and odometry.
+TEST(BagRoundTripTest, ALogFileExportsInLogOrderWhenItsClockStepsBack) {
+  const fs::path dir = TestDir("log_only");
+  const fs::path run = SimulateShortRun(dir);
+  Result<carmen::Log> log = carmen::ReadLog(run / "log.clf");
+  ASSERT_TRUE(log.ok()) << log.status().message();
+  std::vector<carmen::Laser> expected;
+  for (const carmen::Laser* laser : log->Lasers()) expected.push_back(*laser);
+  ASSERT_GT(expected.size(), 10u);
+  // Scan 5 stamped 0.5 s before scan 4.
+  std::size_t scan = 0;
+  for (carmen::Record& record : log->records) {
+    if (auto* laser = std::get_if<carmen::Laser>(&record); laser != nullptr && scan++ == 5) {
+      laser->stamp.timestamp = expected[4].stamp.timestamp - 0.5;
+    }
+  }
+  const fs::path log_path = dir / "raw.clf";
+  ASSERT_TRUE(carmen::WriteLog(log_path, *log).ok());
+
+  const Result<BagExportSummary> exported =
+      ExportRunToBag(log_path, dir / "raw.bag", ExportOptions(false));
+  ASSERT_TRUE(exported.ok()) << exported.status().message();
+  EXPECT_EQ(exported->scans, expected.size());
+  EXPECT_EQ(exported->frames, 0u);
+  EXPECT_GE(exported->restamped_scans, 1u);
+  const Result<BagImportSummary> imported =
+      ImportBagToRun(dir / "raw.bag", dir / "imported", ImportOptions());
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  const Result<carmen::Log> back = carmen::ReadLog(dir / "imported/log.clf");
+  ASSERT_TRUE(back.ok());
+  const auto back_lasers = back->Lasers();
+  ASSERT_EQ(back_lasers.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const std::string what = "scan " + std::to_string(i);
+    ExpectSamePose(expected[i].scan.odometry, back_lasers[i]->scan.odometry, what);
+    EXPECT_EQ(static_cast<float>(expected[i].scan.scan.ranges[7]),
+              static_cast<float>(back_lasers[i]->scan.scan.ranges[7]))
+        << what;
+    if (i > 0) {
+      EXPECT_GT(back_lasers[i]->stamp.timestamp, back_lasers[i - 1]->stamp.timestamp) << what;
+    }
+  }
+  EXPECT_NEAR(back_lasers[5]->stamp.timestamp, back_lasers[4]->stamp.timestamp + 1e-3, 1e-6);
   fs::remove_all(dir);
 }
 

@@ -1,0 +1,98 @@
+#include "localization/scan_tracking.h"
+
+#include <gtest/gtest.h>
+
+#include "core/angles.h"
+#include "mapping/testing/synthetic_map.h"
+
+namespace semchain::localization {
+namespace {
+
+class ScanTrackingTest : public ::testing::Test {
+ protected:
+  ScanTrackingTest() : matcher_(mapping::testing::RoomMap(), ScanMatchRelocalizerOptions()) {}
+
+  std::vector<Eigen::Vector2d> Points(const std::vector<mapping::testing::Segment>& world,
+                                      const Pose2& pose) const {
+    return matcher_.MatchPoints(mapping::testing::SimulateScan(world, pose, 361, 1.5 * kPi),
+                                Pose2());
+  }
+  static void ExpectNear(const Pose2& a, const Pose2& b, double meters, double radians) {
+    EXPECT_LT((a.translation() - b.translation()).norm(), meters) << a << " vs " << b;
+    EXPECT_LT(std::abs(AngleDifference(a.theta, b.theta)), radians) << a << " vs " << b;
+  }
+
+  const Pose2 truth_{-2.31, 1.17, 2.2};
+  ScanMatchRelocalizer matcher_;
+};
+
+// A prediction a few centimetres and degrees off: the refinement alone finds the pose.
+TEST_F(ScanTrackingTest, RefinesAPredictionNearThePose) {
+  const std::vector<Eigen::Vector2d> points = Points(mapping::testing::RoomWorld(), truth_);
+  const ScanTrackingResult result =
+      TrackScan(matcher_, points, {truth_ * Pose2(0.04, -0.03, 0.03)}, ScanTrackingOptions());
+  ASSERT_TRUE(result.matched);
+  EXPECT_FALSE(result.searched);
+  EXPECT_GT(result.score, 0.9);
+  ExpectNear(result.pose, truth_, 0.01, DegToRad(0.3));
+}
+
+// Odometry 0.2 m and 15° off (a slip, a late scan): beyond what a refinement may move, the
+// window search finds the pose; without a window the scan is not matched.
+TEST_F(ScanTrackingTest, SearchesTheWindowWhenThePredictionIsFarOff) {
+  const std::vector<Eigen::Vector2d> points = Points(mapping::testing::RoomWorld(), truth_);
+  const Pose2 prediction = truth_ * Pose2(0.2, 0.05, DegToRad(15.0));
+  const ScanTrackingResult result =
+      TrackScan(matcher_, points, {prediction}, ScanTrackingOptions());
+  ASSERT_TRUE(result.matched);
+  EXPECT_TRUE(result.searched);
+  ExpectNear(result.pose, truth_, 0.02, DegToRad(0.6));
+
+  ScanTrackingOptions no_window;
+  no_window.search_linear_window_meters = 0.0;
+  no_window.search_angular_window_radians = 0.0;
+  const ScanTrackingResult refined_only = TrackScan(matcher_, points, {prediction}, no_window);
+  EXPECT_FALSE(refined_only.matched);
+  EXPECT_FALSE(refined_only.searched);
+}
+
+// A scan of another place fits the map nowhere near the prediction where the matches so far
+// scored 0.9: not matched, and the caller keeps its own estimate.
+TEST_F(ScanTrackingTest, AScanThatDoesNotFitIsNotMatched) {
+  const std::vector<Eigen::Vector2d> points =
+      Points(mapping::testing::ClutteredWorld(), Pose2(0.0, 0.0, 0.0));
+  const ScanTrackingOptions options = ScanTrackingThresholds(ScanTrackingOptions(), 0.9);
+  EXPECT_DOUBLE_EQ(options.min_score, 0.45);
+  const ScanTrackingResult result = TrackScan(matcher_, points, {Pose2(0.0, 0.0, 0.0)}, options);
+  EXPECT_FALSE(result.matched);
+  EXPECT_LT(result.score, options.min_score);
+  EXPECT_FALSE(TrackScan(matcher_, {}, {truth_}, ScanTrackingOptions()).matched);
+}
+
+// The thresholds follow the typical score of the matches, within their bounds.
+TEST(ScanTrackingOptionsTest, ThresholdsFollowTheTypicalScore) {
+  const ScanTrackingOptions options;
+  const ScanTrackingOptions sharp = ScanTrackingThresholds(options, 0.9);
+  EXPECT_DOUBLE_EQ(sharp.confident_score, 0.75);  // at most confident_score
+  EXPECT_DOUBLE_EQ(sharp.min_score, 0.45);        // half the typical score
+  const ScanTrackingOptions cluttered = ScanTrackingThresholds(options, 0.4);
+  EXPECT_DOUBLE_EQ(cluttered.confident_score, 0.36);
+  EXPECT_DOUBLE_EQ(cluttered.min_score, 0.2);
+  const ScanTrackingOptions lost = ScanTrackingThresholds(options, 0.1);
+  EXPECT_DOUBLE_EQ(lost.min_score, 0.15);  // the floor, for both
+  EXPECT_DOUBLE_EQ(lost.confident_score, 0.15);
+}
+
+TEST(ScanTrackingOptionsTest, Validates) {
+  std::string error;
+  EXPECT_TRUE(ScanTrackingOptions().Validate(&error)) << error;
+  ScanTrackingOptions bad;
+  bad.min_score = 1.5;
+  EXPECT_FALSE(bad.Validate(&error));
+  bad = ScanTrackingOptions();
+  bad.max_correction_meters = 0.0;
+  EXPECT_FALSE(bad.Validate(&error));
+}
+
+}  // namespace
+}  // namespace semchain::localization
