@@ -18,7 +18,7 @@ int ReportError(const Status& status) {
 }
 
 // --help and --version end in a ParseError too (exit code 0, CLI11 prints them). A usage error
-// is one line and exit 1, as every other error (README, "The semchain command"), naming the
+// is one line and exit 1, as every other error (README, "The commands"), naming the
 // --help to read.
 int ExitOnParseError(const CLI::App& app, const CLI::ParseError& error) {
   if (error.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(error);

@@ -52,7 +52,7 @@ std::string CannotLoad(const fs::path& model_path, const PreparedOnnxModel& prep
   return model_path.string() +
          ": OpenCV DNN cannot load this ONNX model, and its graph has no YOLOv8 raw head to cut "
          "it at (per stride a Concat of a 64-channel box and an nc-channel class convolution; "
-         "see README)";
+         "see the README, \"Bring your own detector\")";
 }
 
 // The model's network and the input size to run it at: 'options''s, or the model's own for 0 × 0.

@@ -114,7 +114,7 @@ struct LocalizerOptions {
   // the last one did not have (none within the memory's same_object_distance, odometry frame),
   // the tracked pose explaining a different count, or the tracking moving the pose against the
   // odometry by recheck_pose_shift / recheck_pose_turn. Re-checking the same objects frame after
-  // frame was most of semantic-scanmatch's search CPU on the office floor (issue 22). False:
+  // frame was most of semantic-scanmatch's search CPU on the office floor. False:
   // every frame re-checks.
   bool recheck_on_new_evidence_only = true;
   double recheck_pose_shift = 0.1;

@@ -22,7 +22,7 @@ struct HeadingSearchOptions {
   // The window is this many standard deviations of the motion model's heading noise, so that it
   // follows the turn (GMapping's stt) — wheel odometry's heading errors are heavier-tailed than
   // the Gaussian of the model; 5 is a useful value. 0 (the default) turns the sweep off: on the
-  // raw logs it did not pay (README, "SLAM on wheel odometry": mit-csail 0.028 m with it, 0.030
+  // raw logs it did not pay (docs/experiments.md, "SLAM": mit-csail 0.028 m with it, 0.030
   // without; ACES 0.21 m with it, 0.056 without).
   double window_sigmas = 0.0;
   double max_window_radians = 0.6;  // never wider than this (±34°)

@@ -38,7 +38,7 @@ struct LoopClosureOptions {
   // its laser saw: twelve of MIT Killian's (corridors) hold 76 MB, twelve of ACES's (open
   // halls) 148 MB. A cap that frees submaps a search keeps coming back to costs time: ACES with
   // 64 MB, 341 MB peak RSS instead of 425 MB, but the search took 11.2 s instead of 5.3 s
-  // (README, "Campus logs"). 128 MB bounds larger submaps without slowing these logs.
+  // (docs/results.md, "Campus logs with synthetic odometry"). 128 MB bounds larger submaps without slowing these logs.
   double max_built_submaps_megabytes = 128.0;
   // A submap is searched only from nodes at least this far along the path after its last
   // node (nearer ones are the filter's own business).
@@ -71,7 +71,7 @@ struct LoopClosureOptions {
   // submaps agree within the chain's uncertainty between those submaps too. Off by default:
   // made on the simulated campus, they were first applied to every configuration, and the
   // default pose graph then gave FR campus 9.90 m instead of 1.17 m and Killian 4.39 m instead
-  // of 2.43 m (README, "Campus logs").
+  // of 2.43 m (docs/results.md, "Campus logs with synthetic odometry").
   bool corridor_confirmation = false;
   // Every closure, not only one off the prediction, waits for such a confirmation (or agrees
   // with the last accepted closure, found within confirm_within_meters). On a long loop the
@@ -137,7 +137,7 @@ struct LoopClosureOptions {
   // next scans; the filter waits for it at the next processed scan (the results do not depend on
   // timing), so the particles follow one node later than with false (all on the filter's thread).
   // Off by default: on the simulated campus the search is a tenth of the run and the wall time
-  // did not change (README, "The pose graph online").
+  // did not change (docs/experiments.md, "Pose graph").
   bool background = false;
   double follow_min_shift_meters = 0.1;
   double follow_min_turn_radians = 0.02;
