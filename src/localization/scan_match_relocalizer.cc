@@ -119,7 +119,13 @@ RelocalizationResult ScanMatchRelocalizer::RelocalizeInWindow(
 
 RelocalizationResult ScanMatchRelocalizer::RelocalizeInWindow(
     const std::vector<Eigen::Vector2d>& points, const mapping::SearchWindow& window) const {
-  return Finish(points, matcher_.Match(points, window, options_.min_score));
+  return RelocalizeInWindow(points, window, options_.min_score);
+}
+
+RelocalizationResult ScanMatchRelocalizer::RelocalizeInWindow(
+    const std::vector<Eigen::Vector2d>& points, const mapping::SearchWindow& window,
+    double min_score) const {
+  return Finish(points, matcher_.Match(points, window, min_score));
 }
 
 RelocalizationResult ScanMatchRelocalizer::RelocalizeGlobal(const LaserScan& scan,

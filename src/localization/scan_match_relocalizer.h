@@ -102,6 +102,12 @@ class ScanMatchRelocalizer {
                                           const mapping::SearchWindow& window) const;
   RelocalizationResult RelocalizeInWindow(const std::vector<Eigen::Vector2d>& points,
                                           const mapping::SearchWindow& window) const;
+  // The same with the least score a pose needs given by the caller instead of min_score: a
+  // tracker whose scans typically score less in a place (clutter, far returns) searches with
+  // its own threshold.
+  RelocalizationResult RelocalizeInWindow(const std::vector<Eigen::Vector2d>& points,
+                                          const mapping::SearchWindow& window,
+                                          double min_score) const;
   // Searches the whole map and every heading (no prior).
   RelocalizationResult RelocalizeGlobal(const LaserScan& scan, const Pose2& laser_offset) const;
   RelocalizationResult RelocalizeGlobal(const std::vector<Eigen::Vector2d>& points) const;

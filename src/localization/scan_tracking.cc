@@ -157,7 +157,8 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
     window.center = prediction;
     window.linear_window_meters = options.search_linear_window_meters;
     window.angular_window_radians = options.search_angular_window_radians;
-    const RelocalizationResult found = matcher.RelocalizeInWindow(points, window);
+    const RelocalizationResult found =
+        matcher.RelocalizeInWindow(points, window, options.min_score);
     if (found.success) consider(found.pose);
   }
   return result;

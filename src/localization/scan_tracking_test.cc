@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/angles.h"
+#include "mapping/match_grid.h"
 #include "mapping/testing/synthetic_map.h"
 
 namespace semchain::localization {
@@ -54,6 +55,38 @@ TEST_F(ScanTrackingTest, SearchesTheWindowWhenThePredictionIsFarOff) {
   const ScanTrackingResult refined_only = TrackScan(matcher_, points, {prediction}, no_window);
   EXPECT_FALSE(refined_only.matched);
   EXPECT_FALSE(refined_only.searched);
+}
+
+// A place whose scans typically score little (furniture the map does not hold): the right pose
+// scores below the relocalizer's own min_score, so the window search takes the tracker's
+// threshold; with the relocalizer's it would find nothing and the scan would not be matched.
+TEST_F(ScanTrackingTest, SearchesWithItsOwnThresholdWhereScansScoreLittle) {
+  // Ten 0.6 m boards 1.5 m around the robot hide most of the walls.
+  std::vector<mapping::testing::Segment> furnished = mapping::testing::RoomWorld();
+  for (int k = 0; k < 10; ++k) {
+    const double a = k * kPi / 5;
+    const Eigen::Vector2d c =
+        truth_.translation() + 1.5 * Eigen::Vector2d(std::cos(a), std::sin(a));
+    const Eigen::Vector2d along = 0.3 * Eigen::Vector2d(-std::sin(a), std::cos(a));
+    furnished.push_back({c - along, c + along});
+  }
+  const std::vector<Eigen::Vector2d> points = Points(furnished, truth_);
+  const double truth_score = mapping::CellScore(matcher_.grid(), points, truth_);
+  ASSERT_GT(truth_score, 0.3) << truth_score;
+  ASSERT_LT(truth_score, ScanMatchRelocalizerOptions().min_score) << truth_score;
+
+  const Pose2 prediction = truth_ * Pose2(0.2, 0.05, DegToRad(15.0));
+  mapping::SearchWindow window;
+  window.center = prediction;
+  window.linear_window_meters = ScanTrackingOptions().search_linear_window_meters;
+  window.angular_window_radians = ScanTrackingOptions().search_angular_window_radians;
+  EXPECT_FALSE(matcher_.RelocalizeInWindow(points, window).success);
+
+  const ScanTrackingOptions options = ScanTrackingThresholds(ScanTrackingOptions(), truth_score);
+  const ScanTrackingResult result = TrackScan(matcher_, points, {prediction}, options);
+  ASSERT_TRUE(result.matched);
+  EXPECT_TRUE(result.searched);
+  ExpectNear(result.pose, truth_, 0.03, DegToRad(1.0));
 }
 
 // A scan of another place fits the map nowhere near the prediction where the matches so far
