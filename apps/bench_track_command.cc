@@ -209,6 +209,7 @@ Status RunBenchTrack(const BenchTrackArgs& args) {
     t.scans = eval::TrackScans(map, method, *scans, built->reference, track_options);
     t.summary = eval::SummarizeTrack(t.scans);
     results["methods"][t.method] = SummaryJson(t.summary, target);
+    results["methods"][t.method]["over_target"] = OverTargetJson(t.scans, checks, target);
     spdlog::info("bench track: {} {}", t.method, results["methods"][t.method].dump());
     SEMCHAIN_RETURN_IF_ERROR(WriteTrackPng(
         "bench track " + t.method + ": " + results["source"].get<std::string>(), t.scans, checks,

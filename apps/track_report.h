@@ -26,6 +26,13 @@ struct MethodTrack {
 };
 
 nlohmann::json SummaryJson(const eval::TrackSummary& s, const TrackTarget& target);
+// The scans whose error passes the target's max (metres or degrees), by what the map says of
+// them: the estimate fits the map better than the reference pose does (the map, drawn from
+// every visit, disagrees with its own trajectory there: the map is at fault, not the tracker),
+// scan tracking did not match the scan, or neither (the tracker chose a worse fit).
+nlohmann::json OverTargetJson(const std::vector<eval::TrackedScan>& track,
+                              const std::vector<eval::ReferenceCheck>& checks,
+                              const TrackTarget& target);
 // Median, p95 and max of the reference checks (ReferenceCheck's four measures).
 nlohmann::json ReferenceJson(const std::vector<eval::ReferenceCheck>& checks);
 // results.md from results.json.
