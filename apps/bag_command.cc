@@ -119,6 +119,9 @@ void AddImport(CLI::App& bag, int& exit_code) {
                       "camera.yaml with the camera's intrinsics, mounting and max_range, used "
                       "instead of camera_info and tf (a bag with an uncalibrated camera_info, "
                       "or no tf of the camera)");
+  command->add_flag(
+      "--no-camera", [args](std::int64_t) { args->options.import_camera = false; },
+      "Import the scans, odometry and truth only (no frames, no camera.yaml)");
   command
       ->add_option("--detections-topic", options.topics.detections,
                    "std_msgs/String topic of detections.jsonl records")

@@ -52,7 +52,10 @@ Result<fs::path> LogPath(const BenchTrackArgs& args) {
   if (args.bag.empty()) return fs::path(args.log);
 #ifdef SEMCHAIN_WITH_ROS
   const fs::path run = fs::path(args.out) / "run";
-  const Result<ros1::BagImportSummary> imported = ros1::ImportBagToRun(args.bag, run);
+  // Tracking needs the scans and odometry alone (a bag's camera may be uncalibrated).
+  ros1::BagImportOptions options;
+  options.import_camera = false;
+  const Result<ros1::BagImportSummary> imported = ros1::ImportBagToRun(args.bag, run, options);
   if (!imported.ok()) return imported.status();
   for (const std::string& w : imported->warnings) spdlog::warn("bench track: {}", w);
   spdlog::info("bench track: imported {} scans from {} (odometry from {})", imported->scans,

@@ -505,7 +505,10 @@ bool Localizer::RecheckLock(const StampedScan& scan, const LocalizerFrame& frame
   }
   ++statistics_.lock_rechecks;
   const auto found_nothing = [&] {
-    FruitlessRecheck& memo = fruitless_recheck_.emplace();
+    // Assigned, not emplace()d: clang 14 takes a nested struct with default member initialisers
+    // for not default-constructible inside its enclosing class's std::optional.
+    fruitless_recheck_ = FruitlessRecheck{};
+    FruitlessRecheck& memo = *fruitless_recheck_;
     const Eigen::Isometry2d odometry_from_robot = scan.odometry.ToIsometry();
     memo.objects = observed;
     for (ObservedObject& o : memo.objects) o.surface = odometry_from_robot * o.surface;

@@ -80,7 +80,8 @@ Result<ImportedRun> ReadBag(BagReader& reader, const fs::path& dir, ImportContex
   if (!truth.ok()) return truth.status();
   run.truth = std::move(*truth);
 
-  Result<CameraTopics> camera_topics = ResolveCameraTopics(reader, options.topics);
+  Result<CameraTopics> camera_topics =
+      options.import_camera ? ResolveCameraTopics(reader, options.topics) : CameraTopics{};
   if (!camera_topics.ok()) return camera_topics.status();
 
   // The progress bar counts scans and images, the bulk of the work.

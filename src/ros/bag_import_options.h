@@ -27,6 +27,9 @@ struct BagImportOptions {
   // in place of camera_info and tf: for a bag whose camera_info is uncalibrated, or whose tf
   // lacks the camera. Empty: from the bag.
   std::filesystem::path camera_yaml;
+  // false: the scans, odometry and truth alone (no frames, no camera.yaml), for a bag whose
+  // camera is not wanted or not calibrated.
+  bool import_camera = true;
   bool show_progress = true;  // a progress bar on stderr when it is a terminal
 };
 

@@ -308,6 +308,15 @@ TEST_F(CompressedImportTest, AnUncalibratedCameraNeedsACameraYaml) {
   EXPECT_THAT(refused.status().message(), HasSubstr("--camera-yaml"));
   EXPECT_FALSE(fs::exists(dir_ / "run"));
 
+  // The scans alone: no camera wanted, none refused.
+  options_.import_camera = false;
+  const Result<BagImportSummary> scans_only = Import();
+  ASSERT_TRUE(scans_only.ok()) << scans_only.status().message();
+  EXPECT_EQ(scans_only->frames, 0u);
+  EXPECT_GT(scans_only->scans, 0u);
+  EXPECT_FALSE(fs::exists(dir_ / "run/camera.yaml"));
+  options_.import_camera = true;
+
   CameraInfo given;
   given.camera.intrinsics = {kWidth, kHeight, 6.0, 6.0, 3.5, 2.5};
   given.camera.robot_from_camera = CameraMount();
