@@ -43,6 +43,10 @@ bool ScanTrackingOptions::Validate(std::string* error) const {
     *error = "scan_tracking.max_missed_scans must be >= 1";
     return false;
   }
+  if (!(search_margin_ratio >= 1.0)) {
+    *error = "scan_tracking.search_margin_ratio must be >= 1";
+    return false;
+  }
   if (!(max_correction_meters > 0.0 && max_correction_radians > 0.0 &&
         search_linear_window_meters >= 0.0 && search_angular_window_radians >= 0.0)) {
     *error = "scan_tracking: corrections must be > 0 and search windows >= 0";
@@ -152,6 +156,7 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
     return result;
   }
   result.searched = true;
+  const double refined_score = result.score;
   for (const Pose2& prediction : predictions) {
     mapping::SearchWindow window;
     window.center = prediction;
@@ -159,7 +164,10 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
     window.angular_window_radians = options.search_angular_window_radians;
     const RelocalizationResult found =
         matcher.RelocalizeInWindow(points, window, options.min_score);
-    if (found.success) consider(found.pose);
+    if (found.success && mapping::CellScore(matcher.grid(), points, found.pose) >=
+                             options.search_margin_ratio * refined_score) {
+      consider(found.pose);
+    }
   }
   return result;
 }

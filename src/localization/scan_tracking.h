@@ -64,6 +64,10 @@ struct ScanTrackingOptions {
   // CSAIL's odometry turns up to 24° wrong in one scan.
   double search_linear_window_meters = 0.3;
   double search_angular_window_radians = 0.5;
+  // A searched pose replaces a refinement of a prediction only when it scores this many times
+  // more: a scan that fits the map little everywhere (clutter) scores a few hundredths more at
+  // some pose degrees away than at the pose the odometry supports.
+  double search_margin_ratio = 1.15;
   // When the robot is found is the caller's decision (a lock, a pose given, a converged filter);
   // a filter counts as converged for this when its position and heading standard deviations
   // are within these (the filter's own test, 90 % of the weight within convergence_distance,

@@ -125,6 +125,9 @@ TEST(ScanTrackingOptionsTest, Validates) {
   bad = ScanTrackingOptions();
   bad.max_correction_meters = 0.0;
   EXPECT_FALSE(bad.Validate(&error));
+  bad = ScanTrackingOptions();
+  bad.search_margin_ratio = 0.9;
+  EXPECT_FALSE(bad.Validate(&error));
 }
 
 }  // namespace

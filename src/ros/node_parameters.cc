@@ -105,6 +105,7 @@ Result<LocalizationNodeParameters> ReadLocalizationNodeParameters(const ::ros::N
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "observation_memory", &p.localizer.observation_memory));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "single_object", &p.localizer.single_object));
   SEMCHAIN_RETURN_IF_ERROR(Read(nh, "recheck_lock", &p.localizer.recheck_lock));
+  SEMCHAIN_RETURN_IF_ERROR(Read(nh, "scan_tracking", &p.localizer.scan_tracking.enabled));
   SEMCHAIN_RETURN_IF_ERROR(
       Read(nh, "recheck_on_new_evidence_only", &p.localizer.recheck_on_new_evidence_only));
   SEMCHAIN_RETURN_IF_ERROR(
@@ -126,13 +127,14 @@ std::string DescribeLocalizationParameters(const LocalizationNodeParameters& p) 
       line, sizeof(line),
       "particles %d-%d, laser %s %d beams, update_min_d %.3g m, update_min_a %.3g rad, "
       "resample_interval %d, odom_alpha1-4 %.3g %.3g %.3g %.3g, frames %s/%s/%s, "
-      "transform_tolerance %.3g s, /amcl_pose %s, seed %llu",
+      "transform_tolerance %.3g s, /amcl_pose %s, scan tracking %s, seed %llu",
       a.min_particles, a.max_particles,
       a.laser_model_type == localization::LaserModelType::kBeam ? "beam" : "likelihood_field",
       a.max_beams, a.update_min_d, a.update_min_a, a.resample_interval, a.alpha1, a.alpha2,
       a.alpha3, a.alpha4, p.frames.global_frame_id.c_str(), p.frames.odom_frame_id.c_str(),
       p.frames.base_frame_id.c_str(), p.transform_tolerance,
       p.publish_pose_every_scan ? "after every scan" : "on filter updates",
+      p.localizer.scan_tracking.enabled ? "on" : "off",
       static_cast<unsigned long long>(p.localizer.seed));
   return line;
 }
