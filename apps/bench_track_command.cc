@@ -44,6 +44,7 @@ struct BenchTrackArgs {
   std::string beam_selection;
   bool no_scan_tracking = false;
   std::optional<double> min_score, confident_score, translation_weight, rotation_weight;
+  std::optional<double> search_margin;
   int seed = 1;
 };
 
@@ -190,6 +191,7 @@ Status RunBenchTrack(const BenchTrackArgs& args) {
   if (args.confident_score) scan_tracking.confident_score = *args.confident_score;
   if (args.translation_weight) scan_tracking.translation_weight = *args.translation_weight;
   if (args.rotation_weight) scan_tracking.rotation_weight = *args.rotation_weight;
+  if (args.search_margin) scan_tracking.search_margin_ratio = *args.search_margin;
   std::string error;
   if (!scan_tracking.Validate(&error)) return Status::Error("bench track: " + error);
   nlohmann::json results = {{"source", args.bag.empty() ? args.log : args.bag},
@@ -275,6 +277,9 @@ void AddBenchTrack(CLI::App& bench, int& exit_code) {
                       "Scan tracking: the prior's translation weight (default 1)");
   command->add_option("--match-rotation-weight", args->rotation_weight,
                       "Scan tracking: the prior's rotation weight (default 3)");
+  command->add_option("--match-search-margin", args->search_margin,
+                      "Scan tracking: a searched pose replaces the refinement of the prediction "
+                      "only when it scores this many times as much (default 1)");
   command->add_option("--seed", args->seed, "Seed of the filters")->capture_default_str();
   command->callback([args, &exit_code] {
     if (args->log.empty() == args->bag.empty()) {

@@ -65,9 +65,9 @@ struct ScanTrackingOptions {
   double search_linear_window_meters = 0.3;
   double search_angular_window_radians = 0.5;
   // A searched pose replaces a refinement of a prediction only when it scores this many times
-  // more: a scan that fits the map little everywhere (clutter) scores a few hundredths more at
-  // some pose degrees away than at the pose the odometry supports.
-  double search_margin_ratio = 1.15;
+  // more (1: whichever scores more). 1.15 kept one cluttered FR079 scan from matching 9.8° off
+  // (0.49 against 0.44), but left nine Intel corridor scans 0.21 m behind (docs/experiments.md).
+  double search_margin_ratio = 1.0;
   // When the robot is found is the caller's decision (a lock, a pose given, a converged filter);
   // a filter counts as converged for this when its position and heading standard deviations
   // are within these (the filter's own test, 90 % of the weight within convergence_distance,
