@@ -30,4 +30,8 @@ for symbolizer in llvm-symbolizer llvm-symbolizer-14; do
     break
   fi
 done
-ctest --test-dir "$build" --output-on-failure -j "$jobs"
+# One test is left to the Release suite: it runs nine whole two-lap SLAM runs (four seeds with
+# and without the pose graph, and one in the background), over ten minutes under the
+# sanitizers; the code it runs, LoopClosureTest's other cases run too.
+ctest --test-dir "$build" --output-on-failure -j "$jobs" \
+  -E '^LoopClosureTest\.OnlineTheParticlesFollowTheClosedLoop$'
