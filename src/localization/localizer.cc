@@ -165,7 +165,7 @@ void Localizer::SetInitialPose(const Pose2& pose, const Eigen::Matrix3d& covaria
   prior_.reset();
   amcl_.ClearPosePrior();
   if (IsScanMatcherMethod(method_)) {
-    StartTracking(odometry, pose);
+    StartTracking(odometry, pose, /*pose_given=*/true);
     return;
   }
   amcl_.InitializePose(pose, SampleableCovariance(covariance));
@@ -477,9 +477,10 @@ int Localizer::StepScanMatcher(const StampedScan& scan, const LocalizerFrame* fr
   return updates;
 }
 
-void Localizer::StartTracking(const Pose2& odometry, const Pose2& pose) {
+void Localizer::StartTracking(const Pose2& odometry, const Pose2& pose, bool pose_given) {
   amcl_.InitializePose(pose, kTrackingCovariance);
   tracking_ = true;
+  pose_given_ = pose_given;
   StopScanTracking();  // it starts afresh from this pose
   fruitless_recheck_.reset();
   filter_ = Sighting{pose, odometry};
@@ -668,6 +669,7 @@ int Localizer::Track(const StampedScan& scan) {
 
 bool Localizer::ScanTrackingMayStart() const {
   if (!options_.scan_tracking.enabled) return false;
+  if (!pose_given_ && !options_.scan_tracking.after_global_localization) return false;
   if (IsScanMatcherMethod(method_)) return tracking_;
   // The filter stands by a pose: it was started at one, or it converged (and its cloud is tight),
   // and it has not collapsed since; and no look-alike place is left as likely.

@@ -46,11 +46,11 @@
 //   scanmatch-global    the same matcher over the whole map (Cartographer-style baseline)
 // The semantic methods pre-localize from every object seen during the last turn (see
 // ObservationMemory). After a scan matcher has found the robot, AMCL tracks it.
-// Whichever the method, once the robot is found (a scan matcher's lock, a converged filter, or
-// an initial pose given) every scan is also matched against the map from the pose odometry
-// predicts for it (scan_tracking.h); a matched scan gives the pose, and the filter's particles
-// are moved onto it at its updates (LocalizerOptions::scan_tracking; off: AMCL alone tracks, as
-// nav2 does).
+// Whichever the method, once it tracks from an initial pose given (and, with
+// ScanTrackingOptions::after_global_localization, once global localization found the robot)
+// every scan is also matched against the map from the pose odometry predicts for it
+// (scan_tracking.h); a matched scan gives the pose, and the filter's particles are moved onto it
+// at its updates (LocalizerOptions::scan_tracking; off: AMCL alone tracks, as nav2 does).
 //
 //   LocalizerMap map(occupancy, semantic, AmclOptions(), PreLocalizationOptions(),
 //                    ScanMatchRelocalizerOptions());
@@ -234,7 +234,8 @@ class Localizer {
   int Step(const StampedScan& scan, const LocalizerFrame* frame);
   int StepSemanticAmcl(const StampedScan& scan, const LocalizerFrame* frame);
   int StepScanMatcher(const StampedScan& scan, const LocalizerFrame* frame);
-  void StartTracking(const Pose2& odometry, const Pose2& pose);
+  // A scan matcher's lock, or an initial pose given ('pose_given': scan tracking may start).
+  void StartTracking(const Pose2& odometry, const Pose2& pose, bool pose_given = false);
   bool RecheckLock(const StampedScan& scan, const LocalizerFrame& frame);
   // Whether the last re-check that found nothing saw what 'observed' shows, at the same tracked
   // pose and count (recheck_on_new_evidence_only).

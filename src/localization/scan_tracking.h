@@ -74,6 +74,13 @@ struct ScanTrackingOptions {
   // 0.5 m, leaves room for a match on a neighbouring wall, which the particles would follow).
   double start_max_sigma_meters = 0.1;
   double start_max_sigma_radians = 0.05;
+  // Whether it also starts once global localization found the robot (a converged filter, a scan
+  // matcher's lock), not only from a pose given (an initial pose, /initialpose). Off: a pose
+  // found globally may be a look-alike stretch, and the filter alone can still move off it as
+  // the objects and the laser tell; scan tracking holds it there (bench reloc long_corridor
+  // seed 1: semantic-amcl 62.9 % and semantic-scanmatch 80.0 % with it, 77.1 % and 94.3 %
+  // without).
+  bool after_global_localization = false;
   // After this many scans in a row without a match it stops matching (a kidnapped robot: the
   // filter's failure detection takes over).
   int max_missed_scans = 10;
