@@ -122,12 +122,14 @@ void AddBenchReloc(CLI::App& bench, int& exit_code) {
   command->add_flag("!--recheck-every-frame", args->options.method.recheck_on_new_evidence_only,
                     "semantic-scanmatch: re-check the lock at every frame, also when nothing new "
                     "was seen since a re-check that found nothing");
-  command->add_flag("--trial-face-open", args->options.trial_face_open,
-                    "Active relocalization: after the turns the robot drives towards the most "
-                    "open heading instead of straight on (not the protocol of docs/results.md's tables)");
+  command->add_flag(
+      "--trial-face-open", args->options.trial_face_open,
+      "Active relocalization: after the turns the robot drives towards the most "
+      "open heading instead of straight on (not the protocol of docs/results.md's tables)");
   command
       ->add_option("--trial-turns-after", args->options.trial_turns_after,
-                   "Turns in place where the drive ended (0: none; the protocol of docs/results.md's tables)")
+                   "Turns in place where the drive ended (0: none; the protocol of "
+                   "docs/results.md's tables)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
   AddDetectorOptions(command, &args->detector,

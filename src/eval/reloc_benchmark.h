@@ -35,8 +35,8 @@ struct RelocBenchmarkOptions {
   // The trial behaviour: turns in place, then a drive of at most this far.
   double trial_turns = 2.0;
   double trial_forward = 1.0;
-  // Active relocalization (off: the protocol of docs/results.md's tables): the drive goes towards the
-  // most open heading, and the robot turns in place this many times where it ended
+  // Active relocalization (off: the protocol of docs/results.md's tables): the drive goes towards
+  // the most open heading, and the robot turns in place this many times where it ended
   // (sim::TrialOptions::face_most_open, rotation_after_radians).
   bool trial_face_open = false;
   double trial_turns_after = 0.0;

@@ -35,7 +35,8 @@ struct PreLocalizationOptions {
   // classes fitted and was decided alone). With a slack the observed distance may first miss by
   // this many metres, then by α. 0.05 (chosen on that seed among 0.05, 0.1 and about 0.2) fixes
   // both trials there, but on held-out office_floor seeds 4 and 9 the extra pairs let a
-  // look-alike office be accepted first (docs/experiments.md, "Relocalization"), so it is off by default.
+  // look-alike office be accepted first (docs/experiments.md, "Relocalization"), so it is off by
+  // default.
   double distance_slack = 0.0;
   // Circles that miss each other by up to this (metres, range noise) plus 'circle_slack_per_metre'
   // × the two ranges still give their tangent point.

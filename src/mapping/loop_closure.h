@@ -38,7 +38,8 @@ struct LoopClosureOptions {
   // its laser saw: twelve of MIT Killian's (corridors) hold 76 MB, twelve of ACES's (open
   // halls) 148 MB. A cap that frees submaps a search keeps coming back to costs time: ACES with
   // 64 MB, 341 MB peak RSS instead of 425 MB, but the search took 11.2 s instead of 5.3 s
-  // (docs/results.md, "Campus logs with synthetic odometry"). 128 MB bounds larger submaps without slowing these logs.
+  // (docs/results.md, "Campus logs with synthetic odometry"). 128 MB bounds larger submaps without
+  // slowing these logs.
   double max_built_submaps_megabytes = 128.0;
   // A submap is searched only from nodes at least this far along the path after its last
   // node (nearer ones are the filter's own business).
