@@ -52,4 +52,13 @@ inline std::optional<double> Median(std::vector<double> values) {
   return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
+// The nearest-rank p-th percentile (0 < p <= 100) of 'values' (p = 100: the largest); 0 for none.
+inline double Percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double n = static_cast<double>(values.size());
+  const std::size_t index = static_cast<std::size_t>(std::clamp(std::ceil(p / 100.0 * n), 1.0, n));
+  return values[index - 1];
+}
+
 }  // namespace semchain::eval

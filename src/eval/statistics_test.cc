@@ -31,5 +31,15 @@ TEST(StatisticsTest, MedianOfOddAndEvenCounts) {
   EXPECT_DOUBLE_EQ(*Median({4.0, 1.0, 3.0, 2.0}), 2.5);
 }
 
+TEST(PercentileTest, NearestRank) {
+  const std::vector<double> values = {7, 1, 9, 3, 5, 2, 8, 4, 10, 6};
+  EXPECT_DOUBLE_EQ(Percentile(values, 50.0), 5.0);
+  EXPECT_DOUBLE_EQ(Percentile(values, 95.0), 10.0);
+  EXPECT_DOUBLE_EQ(Percentile(values, 90.0), 9.0);
+  EXPECT_DOUBLE_EQ(Percentile(values, 100.0), 10.0);
+  EXPECT_DOUBLE_EQ(Percentile(values, 1.0), 1.0);
+  EXPECT_DOUBLE_EQ(Percentile({}, 50.0), 0.0);
+}
+
 }  // namespace
 }  // namespace semchain::eval

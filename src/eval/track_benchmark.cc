@@ -9,14 +9,6 @@
 
 namespace semchain::eval {
 
-double Percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const double n = static_cast<double>(values.size());
-  const std::size_t index = static_cast<std::size_t>(std::clamp(std::ceil(p / 100.0 * n), 1.0, n));
-  return values[index - 1];
-}
-
 std::vector<TrackedScan> TrackScans(const localization::LocalizerMap& map,
                                     localization::LocalizationMethod method,
                                     const std::vector<StampedScan>& scans,

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/pose2.h"
+#include "eval/statistics.h"
 #include "localization/localizer.h"
 #include "sensors/laser_scan.h"
 
@@ -49,9 +50,6 @@ struct TrackSummary {
   double cpu_ms_per_update = 0.0;  // CPU of the scans that updated, over the updates
   double cpu_ms_per_scan = 0.0;    // CPU of every scan, over the scans
 };
-
-// The nearest-rank p-th percentile (0 < p <= 100) of 'values'; 0 for none.
-double Percentile(std::vector<double> values, double p);
 
 // Tracks 'scans' with 'method' on 'map' from reference.front(), comparing each scan's estimate
 // with reference[i] ('reference' has one pose per scan, not empty).

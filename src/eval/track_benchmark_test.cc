@@ -10,16 +10,6 @@ namespace {
 
 using localization::LocalizationMethod;
 
-TEST(PercentileTest, NearestRank) {
-  const std::vector<double> values = {7, 1, 9, 3, 5, 2, 8, 4, 10, 6};
-  EXPECT_DOUBLE_EQ(Percentile(values, 50.0), 5.0);
-  EXPECT_DOUBLE_EQ(Percentile(values, 95.0), 10.0);
-  EXPECT_DOUBLE_EQ(Percentile(values, 90.0), 9.0);
-  EXPECT_DOUBLE_EQ(Percentile(values, 100.0), 10.0);
-  EXPECT_DOUBLE_EQ(Percentile(values, 1.0), 1.0);
-  EXPECT_DOUBLE_EQ(Percentile({}, 50.0), 0.0);
-}
-
 TEST(SummarizeTrackTest, ErrorsOfEstimatedScansAndCpuPerUpdate) {
   std::vector<TrackedScan> track(4);
   track[0] = {0.0, true, {}, 0.10, 1.0, 0.9, 1, true, 3.0};

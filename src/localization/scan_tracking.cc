@@ -136,9 +136,11 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
   SEMCHAIN_CHECK(!predictions.empty());
   ScanTrackingResult result;
   if (points.empty()) return result;
-  // Keeps 'pose' when it scores better than the best so far.
-  const auto consider = [&](const Pose2& pose) {
-    const double score = mapping::CellScore(matcher.grid(), points, pose);
+  const auto score_of = [&](const Pose2& pose) {
+    return mapping::CellScore(matcher.grid(), points, pose);
+  };
+  // Keeps 'pose' when its 'score' is better than the best so far.
+  const auto consider = [&](const Pose2& pose, double score) {
     if (score <= result.score) return;
     result.score = score;
     result.pose = pose;
@@ -148,7 +150,7 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
     const Pose2 refined = RefineWithPrior(matcher.grid(), points, prediction, options);
     if (Within(refined, prediction, options.max_correction_meters,
                options.max_correction_radians)) {
-      consider(refined);
+      consider(refined, score_of(refined));
     }
   }
   if (result.score >= options.confident_score || (options.search_linear_window_meters <= 0.0 &&
@@ -164,10 +166,9 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
     window.angular_window_radians = options.search_angular_window_radians;
     const RelocalizationResult found =
         matcher.RelocalizeInWindow(points, window, options.min_score);
-    if (found.success && mapping::CellScore(matcher.grid(), points, found.pose) >=
-                             options.search_margin_ratio * refined_score) {
-      consider(found.pose);
-    }
+    if (!found.success) continue;
+    const double score = score_of(found.pose);
+    if (score >= options.search_margin_ratio * refined_score) consider(found.pose, score);
   }
   return result;
 }
