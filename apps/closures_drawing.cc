@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/world_drawing.h"
+#include "drawing/png.h"
 
 namespace semchain::app {
 // Helpers in a namespace of their own: unity builds compile several files as one.
@@ -108,7 +108,7 @@ Status WritePrecisionRecallPng(const eval::ClosureTable& table, const std::strin
   closures_png::Text(image, "unlabelled: " + std::to_string(table.unlabelled),
                      counts + cv::Point(0, 66), 0.45);
   closures_png::Text(image, "points: score thresholds", counts + cv::Point(0, 100), 0.45);
-  return sim::WritePng(image, path);
+  return drawing::WritePng(image, path);
 }
 
 }  // namespace semchain::app

@@ -7,8 +7,8 @@
 
 #include "detection/detection_drawing.h"
 #include "detection/yolo_dataset.h"
+#include "drawing/png.h"
 #include "io/yolo_labels.h"
-#include "sim/world_drawing.h"
 
 namespace semchain::app {
 namespace fs = std::filesystem;
@@ -71,7 +71,7 @@ Status DrawDatasetGrid(const fs::path& dataset, const std::string& split, int co
     const int x = (i % columns) * (tile.width + gap), y = (i / columns) * (tile.height + gap);
     tiles[i].copyTo(grid(cv::Rect(x, y, tile.width, tile.height)));
   }
-  return sim::WritePng(grid, out);
+  return drawing::WritePng(grid, out);
 }
 
 }  // namespace semchain::app

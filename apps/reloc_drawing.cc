@@ -10,7 +10,10 @@
 
 #include "apps/map_grey.h"
 #include "apps/semantic_drawing.h"
-#include "sim/world_drawing.h"
+#include "drawing/canvas.h"
+#include "drawing/pixels.h"
+#include "drawing/plots.h"
+#include "drawing/png.h"
 
 namespace semchain::app {
 namespace {
@@ -18,21 +21,21 @@ namespace {
 // The time ramp of the particle clouds, light amber (oldest) over orange to dark brown
 // (latest): the order reads at a glance, and the arrows drawn over the clouds keep colours
 // outside it.
-constexpr sim::Color kRamp[] = {{255, 205, 110}, {240, 120, 20}, {120, 30, 0}};
-constexpr sim::Color kTruthColor = {0, 160, 60};
-constexpr sim::Color kEstimateColor = {0, 90, 255};
-constexpr sim::Color kPrelocalizationColor = {150, 50, 200};
-constexpr sim::Color kScanMatchColor = {0, 0, 0};
+constexpr drawing::Color kRamp[] = {{255, 205, 110}, {240, 120, 20}, {120, 30, 0}};
+constexpr drawing::Color kTruthColor = {0, 160, 60};
+constexpr drawing::Color kEstimateColor = {0, 90, 255};
+constexpr drawing::Color kPrelocalizationColor = {150, 50, 200};
+constexpr drawing::Color kScanMatchColor = {0, 0, 0};
 constexpr int kMarginPx = 30;  // room for the title above the map
 constexpr int kLegendWidthPx = 380;
 
 // The colour of the rank-th of 'count' clouds, piecewise linear along kRamp.
-sim::Color RampColor(std::size_t rank, std::size_t count) {
+drawing::Color RampColor(std::size_t rank, std::size_t count) {
   const double t = count > 1 ? static_cast<double>(rank) / static_cast<double>(count - 1) : 1.0;
   const double position = t * static_cast<double>(std::size(kRamp) - 1);
   const std::size_t low = std::min(static_cast<std::size_t>(position), std::size(kRamp) - 2);
   const double f = position - static_cast<double>(low);
-  sim::Color color;
+  drawing::Color color;
   for (std::size_t c = 0; c < color.size(); ++c) {
     color[c] =
         static_cast<std::uint8_t>(std::lround((1.0 - f) * kRamp[low][c] + f * kRamp[low + 1][c]));
@@ -66,20 +69,21 @@ double StartTime(const RelocPictureOptions& options) {
 }
 
 // An arrow 'length_px' long from the pose's position along its heading, over a dot.
-void DrawPoseArrow(const Pose2& pose, const sim::Color& color, double length_px,
-                   sim::TopDownCanvas& canvas) {
+void DrawPoseArrow(const Pose2& pose, const drawing::Color& color, double length_px,
+                   drawing::TopDownCanvas& canvas) {
   const Eigen::Vector2d tip =
       pose.translation() +
       (length_px / canvas.scale()) * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
   const cv::Point from = canvas.ToPixel(pose.translation());
-  cv::circle(canvas.image(), from, 5, Bgr(color), -1, cv::LINE_AA);
-  cv::arrowedLine(canvas.image(), from, canvas.ToPixel(tip), Bgr(color), 3, cv::LINE_AA, 0, 0.35);
+  cv::circle(canvas.image(), from, 5, drawing::Bgr(color), -1, cv::LINE_AA);
+  cv::arrowedLine(canvas.image(), from, canvas.ToPixel(tip), drawing::Bgr(color), 3, cv::LINE_AA, 0,
+                  0.35);
 }
 
-void DrawCloud(const eval::ParticleSnapshot& snapshot, const sim::Color& color,
-               sim::TopDownCanvas& canvas) {
+void DrawCloud(const eval::ParticleSnapshot& snapshot, const drawing::Color& color,
+               drawing::TopDownCanvas& canvas) {
   for (const Pose2& pose : snapshot.poses) {
-    cv::circle(canvas.image(), canvas.ToPixel(pose.translation()), 2, Bgr(color), -1);
+    cv::circle(canvas.image(), canvas.ToPixel(pose.translation()), 2, drawing::Bgr(color), -1);
   }
 }
 
@@ -107,12 +111,12 @@ std::optional<std::size_t> FirstEstimate(const eval::RelocTrace& trace) {
 
 // The truth, the pre-localization, a scan matcher's match and the final estimate.
 void DrawPoses(const eval::RelocTrace& trace, const RelocPictureOptions& options,
-               sim::TopDownCanvas& canvas) {
-  if (!options.truth.empty()) sim::DrawTrajectory(options.truth, kTruthColor, "truth", canvas);
+               drawing::TopDownCanvas& canvas) {
+  if (!options.truth.empty()) drawing::DrawTrajectory(options.truth, kTruthColor, "truth", canvas);
   if (trace.prelocalization) {
     DrawPoseArrow(*trace.prelocalization, kPrelocalizationColor, 30.0, canvas);
     canvas.AddLegend("pre-localization (best hypothesis)", kPrelocalizationColor,
-                     sim::TopDownCanvas::Swatch::kLine);
+                     drawing::TopDownCanvas::Swatch::kLine);
   }
   // A scan matcher has no particles before its match; where and when it matched is its story.
   const std::optional<std::size_t> matched = FirstEstimate(trace);
@@ -122,11 +126,11 @@ void DrawPoses(const eval::RelocTrace& trace, const RelocPictureOptions& options
                             ? options.scan_times[*matched] - StartTime(options)
                             : 0.0;
     canvas.AddLegend("scan match, " + Seconds(time), kScanMatchColor,
-                     sim::TopDownCanvas::Swatch::kLine);
+                     drawing::TopDownCanvas::Swatch::kLine);
   }
   if (!trace.estimates.empty() && trace.estimates.back()) {
     DrawPoseArrow(*trace.estimates.back(), kEstimateColor, 40.0, canvas);
-    canvas.AddLegend("final estimate", kEstimateColor, sim::TopDownCanvas::Swatch::kLine);
+    canvas.AddLegend("final estimate", kEstimateColor, drawing::TopDownCanvas::Swatch::kLine);
   }
 }
 
@@ -157,16 +161,16 @@ Status WriteRelocalizationPng(const mapping::MapImage& map, const semantic::Sema
     return Status::Error(path.string() + ": rotated map origins are not supported");
   }
   const Eigen::Vector2d size = map.resolution * Eigen::Vector2d(map.width, map.height);
-  sim::Bounds bounds;
+  drawing::Bounds bounds;
   bounds.Add(map.origin.head<2>());
   bounds.Add(map.origin.head<2>() + size);
-  sim::DrawingOptions drawing;
+  drawing::DrawingOptions drawing;
   drawing.pixels_per_meter = options.long_side_px / std::max(size.x(), size.y());
   drawing.margin_px = kMarginPx;
   drawing.legend_width_px = kLegendWidthPx;
-  Result<sim::TopDownCanvas> canvas = sim::TopDownCanvas::Create(bounds, drawing);
+  Result<drawing::TopDownCanvas> canvas = drawing::TopDownCanvas::Create(bounds, drawing);
   if (!canvas.ok()) return canvas.status().WithContext(path.string());
-  sim::DrawGreyImage(MapToGrey(map), map.origin.head<2>(), map.resolution, *canvas);
+  drawing::DrawGreyImage(MapToGrey(map), map.origin.head<2>(), map.resolution, *canvas);
   DrawSemanticMap(semantic, *canvas);
 
   const std::vector<eval::ParticleSnapshot>& snapshots = trace.particle_snapshots;
@@ -176,19 +180,19 @@ Status WriteRelocalizationPng(const mapping::MapImage& map, const semantic::Sema
       PrelocalizedSnapshot(snapshots, trace.prelocalization_scan);
   for (std::size_t rank = 0; rank < drawn.size(); ++rank) {
     const std::size_t i = drawn[rank];
-    const sim::Color color = RampColor(rank, drawn.size());
+    const drawing::Color color = RampColor(rank, drawn.size());
     DrawCloud(snapshots[i], color, *canvas);
     canvas->AddLegend(SnapshotLabel(snapshots[i], i, snapshots.size(), prelocalized, options),
-                      color, sim::TopDownCanvas::Swatch::kDot);
+                      color, drawing::TopDownCanvas::Swatch::kDot);
   }
   if (snapshots.empty()) {
     canvas->AddLegend("no particles: the filter never updated", kRamp[std::size(kRamp) - 1],
-                      sim::TopDownCanvas::Swatch::kDot);
+                      drawing::TopDownCanvas::Swatch::kDot);
   }
   DrawPoses(trace, options, *canvas);
   cv::putText(canvas->image(), "semchain localize --method " + options.method, {kMarginPx, 20},
               cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  return sim::WritePng(canvas->Compose(), path);
+  return drawing::WritePng(canvas->Compose(), path);
 }
 
 }  // namespace semchain::app

@@ -14,6 +14,9 @@
 #include "apps/map_grey.h"
 #include "apps/semantic_drawing.h"
 #include "apps/shipped_file.h"
+#include "drawing/canvas.h"
+#include "drawing/plots.h"
+#include "drawing/png.h"
 #include "io/carmen.h"
 #include "io/trajectory_io.h"
 #include "mapping/map_io.h"
@@ -26,10 +29,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr sim::Color kTruthColor = {0, 160, 60};
-constexpr sim::Color kOdometryColor = {220, 40, 40};
-constexpr sim::Color kScanColor = {200, 0, 200};
-constexpr sim::Color kSlamColor = {0, 150, 160};
+constexpr drawing::Color kTruthColor = {0, 160, 60};
+constexpr drawing::Color kOdometryColor = {220, 40, 40};
+constexpr drawing::Color kScanColor = {200, 0, 200};
+constexpr drawing::Color kSlamColor = {0, 150, 160};
 
 struct RenderArgs {
   std::string input;
@@ -141,8 +144,8 @@ Status ReadMapDirectory(const fs::path& dir, const RenderArgs& args, Picture& pi
   return LoadOverlayWorld(args.world, picture);
 }
 
-sim::Bounds PictureBounds(const Picture& picture) {
-  sim::Bounds bounds = picture.world ? sim::WorldBounds(*picture.world) : sim::Bounds();
+drawing::Bounds PictureBounds(const Picture& picture) {
+  drawing::Bounds bounds = picture.world ? sim::WorldBounds(*picture.world) : drawing::Bounds();
   if (picture.map) {
     const Eigen::Vector2d origin = picture.map->origin.head<2>();
     bounds.Add(origin);
@@ -157,21 +160,22 @@ sim::Bounds PictureBounds(const Picture& picture) {
 }
 
 Status Draw(const Picture& picture, const RenderArgs& args) {
-  sim::DrawingOptions options;
+  drawing::DrawingOptions options;
   options.pixels_per_meter = args.scale;
-  Result<sim::TopDownCanvas> canvas = sim::TopDownCanvas::Create(PictureBounds(picture), options);
+  Result<drawing::TopDownCanvas> canvas =
+      drawing::TopDownCanvas::Create(PictureBounds(picture), options);
   if (!canvas.ok()) return canvas.status().WithContext(args.input);
   if (picture.map) {
-    sim::DrawGreyImage(MapToGrey(*picture.map), picture.map->origin.head<2>(),
-                       picture.map->resolution, *canvas);
+    drawing::DrawGreyImage(MapToGrey(*picture.map), picture.map->origin.head<2>(),
+                           picture.map->resolution, *canvas);
   }
   if (picture.world) sim::DrawWorld(*picture.world, *canvas);
   if (picture.semantic) DrawSemanticMap(*picture.semantic, *canvas);
-  sim::DrawPoints(picture.scan_points, kScanColor, "laser returns", *canvas);
-  sim::DrawTrajectory(picture.odometry, kOdometryColor, "odometry", *canvas);
-  sim::DrawTrajectory(picture.truth, kTruthColor, "truth", *canvas);
-  sim::DrawTrajectory(picture.slam, kSlamColor, "SLAM trajectory", *canvas);
-  return sim::WritePng(canvas->Compose(), args.out);
+  drawing::DrawPoints(picture.scan_points, kScanColor, "laser returns", *canvas);
+  drawing::DrawTrajectory(picture.odometry, kOdometryColor, "odometry", *canvas);
+  drawing::DrawTrajectory(picture.truth, kTruthColor, "truth", *canvas);
+  drawing::DrawTrajectory(picture.slam, kSlamColor, "SLAM trajectory", *canvas);
+  return drawing::WritePng(canvas->Compose(), args.out);
 }
 
 Status RunRender(const RenderArgs& args) {

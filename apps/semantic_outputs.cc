@@ -8,10 +8,12 @@
 #include "apps/shipped_file.h"
 #include "detection/run_detection.h"
 #include "detection/yolo_detector.h"
+#include "drawing/canvas.h"
+#include "drawing/plots.h"
+#include "drawing/png.h"
 #include "semantic/keyframes.h"
 #include "semantic/semantic_chain.h"
 #include "semantic/semantic_map_io.h"
-#include "sim/world_drawing.h"
 
 namespace semchain::app {
 namespace {
@@ -36,19 +38,19 @@ cv::Mat MapWithRegions(const mapping::MapImage& map, const semantic::RegionMap& 
 
 Status WriteSemanticPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
                         double scale, const fs::path& path) {
-  sim::Bounds bounds;
+  drawing::Bounds bounds;
   const Eigen::Vector2d origin = map.origin.head<2>();
   bounds.Add(origin);
   bounds.Add(origin + map.resolution * Eigen::Vector2d(map.width, map.height));
-  sim::DrawingOptions options;
+  drawing::DrawingOptions options;
   options.pixels_per_meter = scale;
-  Result<sim::TopDownCanvas> canvas = sim::TopDownCanvas::Create(bounds, options);
+  Result<drawing::TopDownCanvas> canvas = drawing::TopDownCanvas::Create(bounds, options);
   if (!canvas.ok()) return canvas.status();
   const semantic::RegionMap regions =
       semantic::SegmentRegions(map, semantic::SemanticMapOptions().chain);
-  sim::DrawGreyImage(MapWithRegions(map, regions), origin, map.resolution, *canvas);
+  drawing::DrawGreyImage(MapWithRegions(map, regions), origin, map.resolution, *canvas);
   DrawSemanticMap(semantic, *canvas);
-  return sim::WritePng(canvas->Compose(), path);
+  return drawing::WritePng(canvas->Compose(), path);
 }
 
 void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string& what) {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
-#include "sim/world_drawing.h"
+#include "drawing/png.h"
 
 namespace semchain::app {
 namespace {
@@ -116,7 +116,7 @@ Status WriteTrackPng(const std::string& title, const std::vector<eval::TrackedSc
   bottom.Curve(times, degrees, kErrorColor);
   bottom.Target(target_deg);
   bottom.Axes(std::string("heading error (deg) over ") + (timed ? "log seconds" : "scans"), 2);
-  return sim::WritePng(image, path);
+  return drawing::WritePng(image, path);
 }
 
 }  // namespace semchain::app
