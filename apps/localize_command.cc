@@ -16,12 +16,13 @@
 #include "bow/bow_occlusion.h"
 #include "core/angles.h"
 #include "core/atomic_file.h"
-#include "eval/reloc_methods.h"
 #include "io/camera_io.h"
 #include "io/carmen.h"
 #include "io/detections_io.h"
 #include "io/rgbd_frame_io.h"
 #include "io/trajectory_io.h"
+#include "localization/localizer.h"
+#include "localization/reloc_trace.h"
 #include "mapping/map_io.h"
 #include "mapping/slam_pipeline.h"
 #include "semantic/map_folder.h"
@@ -60,16 +61,10 @@ Status RunLocalize(const LocalizeArgs& args) {
   if (!log.ok()) return log.status();
   Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, (run / "log.clf").string());
   if (!scans.ok()) return scans.status();
-  eval::RelocRunInputs inputs;
-  inputs.scans = std::move(*scans);
-  inputs.seed = static_cast<std::uint64_t>(args.seed);
-  // Every update is kept: the picture chooses which to draw once it knows how many there were.
-  if (!args.png.empty()) inputs.record_particles_every = 1;
-  const bool semantic_method = localization::IsSemanticMethod(*method);
-  if (semantic_method) {
+  std::vector<localization::LocalizerFrame> localizer_frames;
+  if (localization::IsSemanticMethod(*method)) {
     Result<CameraInfo> camera = ReadCameraYaml(run / "camera.yaml");
     if (!camera.ok()) return camera.status();
-    inputs.camera = camera->camera;
     const std::string source = args.detector.model.empty()
                                    ? (run / "detections.jsonl").string()
                                    : args.detector.model + " on " + (run / "frames").string();
@@ -80,7 +75,8 @@ Status RunLocalize(const LocalizeArgs& args) {
     std::size_t detections = 0;
     for (const FrameDetections& frame : *frames) {
       detections += frame.detections.size();
-      inputs.frames.push_back({frame.stamp, frame.detections, ColorImagePath(run, frame.frame)});
+      localizer_frames.push_back({frame.stamp, frame.detections, camera->camera, cv::Mat(),
+                                  ColorImagePath(run, frame.frame)});
     }
     if (detections == 0) {
       return Status::Error(source + ": no detections at all: " + args.method +
@@ -99,11 +95,19 @@ Status RunLocalize(const LocalizeArgs& args) {
     if (!recognizer.ok()) return recognizer.status();
     reloc_map.recognizer = std::make_shared<const bow::KeyframeRecognizer>(std::move(*recognizer));
   }
-  const eval::RelocTrace trace =
-      eval::RunRelocMethod(*method, reloc_map, localization::LocalizerOptions(), inputs);
+  localization::LocalizerOptions options;
+  options.seed = static_cast<std::uint64_t>(args.seed);
+  localization::Localizer localizer(reloc_map, *method, options);
+  // The localizer keeps the frames until the scan they belong to; it reads an image only when
+  // the bag of words asks for one.
+  for (localization::LocalizerFrame& frame : localizer_frames) localizer.AddFrame(std::move(frame));
+  // Every update is kept: the picture chooses which to draw once it knows how many there were.
+  localization::RelocTraceRecorder recorder(args.png.empty() ? 0 : 1);
+  for (const StampedScan& scan : *scans) recorder.AddScan(scan, localizer);
+  const localization::RelocTrace trace = recorder.Finish(localizer);
 
   nlohmann::json result = {{"method", args.method},
-                           {"scans", inputs.scans.size()},
+                           {"scans", scans->size()},
                            {"cpu_ms", 1000.0 * trace.cpu_seconds.back()},
                            {"iterations", trace.iterations.back()},
                            {"prelocalizations", trace.prelocalizations},
@@ -131,7 +135,7 @@ Status RunLocalize(const LocalizeArgs& args) {
   if (!args.png.empty()) {
     RelocPictureOptions picture;
     picture.method = args.method;
-    for (const StampedScan& scan : inputs.scans) picture.scan_times.push_back(scan.scan.timestamp);
+    for (const StampedScan& scan : *scans) picture.scan_times.push_back(scan.scan.timestamp);
     for (const StampedPose& pose : truth) picture.truth.push_back(pose.pose);
     SEMCHAIN_RETURN_IF_ERROR(
         WriteRelocalizationPng(*map, *semantic, trace, picture, fs::path(args.png)));

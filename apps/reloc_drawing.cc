@@ -57,7 +57,7 @@ bool IsScanMatcher(const std::string& method) {
 
 // The first snapshot at or after the pre-localization, if any.
 std::optional<std::size_t> PrelocalizedSnapshot(
-    const std::vector<eval::ParticleSnapshot>& snapshots, int prelocalization_scan) {
+    const std::vector<localization::ParticleSnapshot>& snapshots, int prelocalization_scan) {
   for (std::size_t i = 0; prelocalization_scan >= 0 && i < snapshots.size(); ++i) {
     if (snapshots[i].scan >= prelocalization_scan) return i;
   }
@@ -80,7 +80,7 @@ void DrawPoseArrow(const Pose2& pose, const drawing::Color& color, double length
                   0.35);
 }
 
-void DrawCloud(const eval::ParticleSnapshot& snapshot, const drawing::Color& color,
+void DrawCloud(const localization::ParticleSnapshot& snapshot, const drawing::Color& color,
                drawing::TopDownCanvas& canvas) {
   for (const Pose2& pose : snapshot.poses) {
     cv::circle(canvas.image(), canvas.ToPixel(pose.translation()), 2, drawing::Bgr(color), -1);
@@ -88,7 +88,7 @@ void DrawCloud(const eval::ParticleSnapshot& snapshot, const drawing::Color& col
 }
 
 // The legend line of a drawn snapshot: its time and why it was chosen.
-std::string SnapshotLabel(const eval::ParticleSnapshot& snapshot, std::size_t index,
+std::string SnapshotLabel(const localization::ParticleSnapshot& snapshot, std::size_t index,
                           std::size_t count, std::optional<std::size_t> prelocalized,
                           const RelocPictureOptions& options) {
   const bool tracking = IsScanMatcher(options.method);
@@ -102,7 +102,7 @@ std::string SnapshotLabel(const eval::ParticleSnapshot& snapshot, std::size_t in
 }
 
 // The scan at which a scan matcher first gave a pose (its match), if any.
-std::optional<std::size_t> FirstEstimate(const eval::RelocTrace& trace) {
+std::optional<std::size_t> FirstEstimate(const localization::RelocTrace& trace) {
   for (std::size_t i = 0; i < trace.estimates.size(); ++i) {
     if (trace.estimates[i]) return i;
   }
@@ -110,7 +110,7 @@ std::optional<std::size_t> FirstEstimate(const eval::RelocTrace& trace) {
 }
 
 // The truth, the pre-localization, a scan matcher's match and the final estimate.
-void DrawPoses(const eval::RelocTrace& trace, const RelocPictureOptions& options,
+void DrawPoses(const localization::RelocTrace& trace, const RelocPictureOptions& options,
                drawing::TopDownCanvas& canvas) {
   if (!options.truth.empty()) drawing::DrawTrajectory(options.truth, kTruthColor, "truth", canvas);
   if (trace.prelocalization) {
@@ -136,8 +136,9 @@ void DrawPoses(const eval::RelocTrace& trace, const RelocPictureOptions& options
 
 }  // namespace
 
-std::vector<std::size_t> SelectSnapshots(const std::vector<eval::ParticleSnapshot>& snapshots,
-                                         int prelocalization_scan, int max_count) {
+std::vector<std::size_t> SelectSnapshots(
+    const std::vector<localization::ParticleSnapshot>& snapshots, int prelocalization_scan,
+    int max_count) {
   if (snapshots.empty() || max_count <= 0) return {};
   const std::size_t n = snapshots.size();
   std::set<std::size_t> chosen = {0, n - 1};
@@ -155,7 +156,8 @@ std::vector<std::size_t> SelectSnapshots(const std::vector<eval::ParticleSnapsho
 }
 
 Status WriteRelocalizationPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
-                              const eval::RelocTrace& trace, const RelocPictureOptions& options,
+                              const localization::RelocTrace& trace,
+                              const RelocPictureOptions& options,
                               const std::filesystem::path& path) {
   if (map.origin.z() != 0.0) {
     return Status::Error(path.string() + ": rotated map origins are not supported");
@@ -173,7 +175,7 @@ Status WriteRelocalizationPng(const mapping::MapImage& map, const semantic::Sema
   drawing::DrawGreyImage(MapToGrey(map), map.origin.head<2>(), map.resolution, *canvas);
   DrawSemanticMap(semantic, *canvas);
 
-  const std::vector<eval::ParticleSnapshot>& snapshots = trace.particle_snapshots;
+  const std::vector<localization::ParticleSnapshot>& snapshots = trace.particle_snapshots;
   const std::vector<std::size_t> drawn =
       SelectSnapshots(snapshots, trace.prelocalization_scan, options.max_snapshots);
   const std::optional<std::size_t> prelocalized =

@@ -6,7 +6,7 @@
 
 #include "core/pose2.h"
 #include "core/status.h"
-#include "eval/reloc_methods.h"
+#include "localization/reloc_trace.h"
 #include "mapping/map_io.h"
 #include "semantic/semantic_map.h"
 
@@ -26,8 +26,9 @@ struct RelocPictureOptions {
 
 // The particle snapshots drawn: the first, the first at or after 'prelocalization_scan' (when
 // it is ≥ 0), the last, and others evenly spread between them; at most 'max_count', in order.
-std::vector<std::size_t> SelectSnapshots(const std::vector<eval::ParticleSnapshot>& snapshots,
-                                         int prelocalization_scan, int max_count);
+std::vector<std::size_t> SelectSnapshots(
+    const std::vector<localization::ParticleSnapshot>& snapshots, int prelocalization_scan,
+    int max_count);
 
 // Draws a relocalization top-down and writes it as a PNG, atomically: the occupancy map in
 // grey with the semantic objects and chains, the particle clouds of SelectSnapshots (old light,
@@ -35,7 +36,8 @@ std::vector<std::size_t> SelectSnapshots(const std::vector<eval::ParticleSnapsho
 // scan matcher found the robot, the true trajectory and the final estimate as arrows. The map
 // must not be rotated (origin θ = 0).
 Status WriteRelocalizationPng(const mapping::MapImage& map, const semantic::SemanticMap& semantic,
-                              const eval::RelocTrace& trace, const RelocPictureOptions& options,
+                              const localization::RelocTrace& trace,
+                              const RelocPictureOptions& options,
                               const std::filesystem::path& path);
 
 }  // namespace semchain::app

@@ -47,7 +47,7 @@ TEST(RelocBenchmarkTest, SemanticMethodsRelocalizeInLookAlikeRooms) {
 }
 
 // Weighted RMS distance of the particles from their weighted mean, metres.
-double Spread(const eval::ParticleSnapshot& snapshot) {
+double Spread(const localization::ParticleSnapshot& snapshot) {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   double total = 0.0;
   for (std::size_t i = 0; i < snapshot.poses.size(); ++i) {
@@ -84,12 +84,12 @@ TEST(RelocMethodsTest, ParticleSnapshotsChangeNothingAndShrink) {
                                        localization::ScanMatchRelocalizerOptions());
 
   eval::RelocRunInputs inputs = trial->inputs;
-  const eval::RelocTrace plain =
+  const localization::RelocTrace plain =
       eval::RunRelocMethod(localization::LocalizationMethod::kSemanticAmcl, map,
                            localization::LocalizerOptions(), inputs);
   inputs.record_particles_every = 4;
   inputs.record_particles_max = 500;
-  const eval::RelocTrace recorded =
+  const localization::RelocTrace recorded =
       eval::RunRelocMethod(localization::LocalizationMethod::kSemanticAmcl, map,
                            localization::LocalizerOptions(), inputs);
 
@@ -112,7 +112,7 @@ TEST(RelocMethodsTest, ParticleSnapshotsChangeNothingAndShrink) {
   EXPECT_LE((recorded.estimates.back()->translation() - truth.translation()).norm(), 0.25);
   EXPECT_LE(std::abs(NormalizeAngle(recorded.estimates.back()->theta - truth.theta)), 0.1745);
 
-  const std::vector<eval::ParticleSnapshot>& snapshots = recorded.particle_snapshots;
+  const std::vector<localization::ParticleSnapshot>& snapshots = recorded.particle_snapshots;
   ASSERT_GE(snapshots.size(), 3u);
   for (std::size_t i = 0; i < snapshots.size(); ++i) {
     EXPECT_LE(snapshots[i].poses.size(), 500u);

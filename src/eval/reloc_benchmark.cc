@@ -303,7 +303,8 @@ Result<RelocTrialRun> LoadRelocTrial(std::uint64_t seed, const RelocBenchmarkOpt
   return data;
 }
 
-RelocTrialOutcome ScoreRelocTrace(const RelocTrace& trace, const std::vector<StampedPose>& truth,
+RelocTrialOutcome ScoreRelocTrace(const localization::RelocTrace& trace,
+                                  const std::vector<StampedPose>& truth,
                                   const RelocBenchmarkOptions& options, const MapFrame* map_frame) {
   RelocTrialOutcome outcome;
   const std::size_t n = trace.estimates.size();
@@ -537,8 +538,8 @@ Result<RelocBenchmarkResult> RunRelocBenchmark(const fs::path& world_path,
       SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(run / "trial.json", trial_stamp));
     }
     for (const std::string& method : options.methods) {
-      const RelocTrace trace = RunRelocMethod(*localization::ParseLocalizationMethod(method), map,
-                                              options.method, trial->inputs);
+      const localization::RelocTrace trace = RunRelocMethod(
+          *localization::ParseLocalizationMethod(method), map, options.method, trial->inputs);
       const RelocTrialOutcome outcome = ScoreRelocTrace(trace, trial->truth, options, &*map_frame);
       Accumulate(outcome, &result.methods[method]);
       const Pose2& start = (*starts)[static_cast<std::size_t>(k)];

@@ -65,7 +65,8 @@ struct RelocMethodStats {
   // Over successful trials.
   double mean_time_s = 0.0;  // simulated time from the start to convergence
   double mean_cpu_ms = 0.0;  // CPU time the method spent until convergence
-  // Scan-matcher methods: the part of it spent searching (RelocTrace::search_cpu_seconds).
+  // Scan-matcher methods: the part of it spent searching
+  // (localization::RelocTrace::search_cpu_seconds).
   double mean_search_cpu_ms = 0.0;
   double mean_iterations = 0.0;  // filter updates / matcher runs until convergence
   // Over all trials, a failed one charged for the whole time it had (up to the time limit).
@@ -166,7 +167,8 @@ struct RelocTrialOutcome {
 
 // Scores 'trace' against 'truth' (one pose per scan) with the options' tolerances and limit;
 // with 'map_frame' (may be null) also the pre-localization against the truth in the map's frame.
-RelocTrialOutcome ScoreRelocTrace(const RelocTrace& trace, const std::vector<StampedPose>& truth,
+RelocTrialOutcome ScoreRelocTrace(const localization::RelocTrace& trace,
+                                  const std::vector<StampedPose>& truth,
                                   const RelocBenchmarkOptions& options,
                                   const MapFrame* map_frame = nullptr);
 

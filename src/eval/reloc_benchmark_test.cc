@@ -11,7 +11,7 @@ namespace {
 // search CPU by 4 ms.
 struct Fixture {
   std::vector<StampedPose> truth;
-  RelocTrace trace;
+  localization::RelocTrace trace;
   RelocBenchmarkOptions options;
 
   Fixture() {
