@@ -77,6 +77,10 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "min_known_fraction must be in [0, 1]";
     return false;
   }
+  if (!(consistent_min_score >= 0.0 && consistent_min_score <= min_score)) {
+    *error = "consistent_min_score must be in [0, min_score]";
+    return false;
+  }
   if (!(query_travel_meters >= 0.0) || !(query_cell_meters > 0.0)) {
     *error = "query_travel_meters must be >= 0 and query_cell_meters positive";
     return false;
@@ -563,6 +567,9 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   BranchAndBoundResult best;
   RelativeUncertainty best_uncertainty;
   const bool record = options.record_candidates;
+  // The lowest score a match may have to be verified at all.
+  const double floor =
+      options.consistent_min_score > 0.0 ? options.consistent_min_score : options.min_score;
   int best_candidate = -1;  // the recorded candidate of best_submap
   int highest = -1;         // the recorded candidate of this search scoring highest
   for (Submap& submap : submaps) {
@@ -582,8 +589,8 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     searched = true;
     // Recording, every submap is searched down to the recording floor; the closure picked
     // below is the same (the matcher finds the same best pose above any lower bound).
-    const double bound = record ? std::min(options.record_min_score, options.min_score)
-                                : std::max(options.min_score, best.score);
+    const double bound =
+        record ? std::min(options.record_min_score, floor) : std::max(floor, best.score);
     const BranchAndBoundResult match = submap.matcher->Match(points, window, bound);
     if (!match.found) continue;
     if (record) {
@@ -599,7 +606,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
       if (highest < 0 || match.score > candidates[static_cast<std::size_t>(highest)].score) {
         highest = index;
       }
-      if (!ReachesMinScore(match.score, points.size(), options.min_score)) continue;
+      if (!ReachesMinScore(match.score, points.size(), floor)) continue;
       if (match.score > best.score) best_candidate = index;
     }
     if (match.score > best.score) {
@@ -626,7 +633,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   };
   if (options.unknown_is_neutral) {
     const KnownAgreement agreement = AgreementOnKnownCells(*best_submap, points, closure.relative);
-    if (agreement.fraction < options.min_known_fraction || agreement.score < options.min_score) {
+    if (agreement.fraction < options.min_known_fraction || agreement.score < floor) {
       return false;
     }
   }
@@ -648,6 +655,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
       SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed);
   if (candidate != nullptr) candidate->innovation_sigmas = std::sqrt(innovation_squared);
   const bool off_prediction = options.gate_sigmas > 0.0 && innovation_squared > gate;
+  const bool weak = !ReachesMinScore(best.score, points.size(), options.min_score);
   // Travel from an earlier closure's node to this one, and whether that closure says the same
   // of the map as this one.
   const auto travel_since = [&](const PoseGraphEdge& other) {
@@ -659,7 +667,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   while (!pending.empty() && travel_since(pending.front()) > options.confirm_within_meters) {
     pending.pop_front();
   }
-  if (off_prediction || options.confirm_every_closure) {
+  if (off_prediction || weak || options.confirm_every_closure) {
     // Off the motion's prediction: a lone aliased match, or drift the motion model does not
     // cover. Drift makes the next closures agree with this one; aliasing does not. Within the
     // prediction, a loose motion model (a long loop) can still admit an aliased match down a
@@ -667,7 +675,8 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
     // a query at least confirm_min_separation_meters further on (two scans a metre apart see
     // the same stretch of corridor and slide along it together) and, with the corridor rules,
     // for a closure off the prediction from another submap. Without them only the latest
-    // held-back closure may be confirmed.
+    // held-back closure may be confirmed. A weak match (under min_score) is verified the same
+    // way: by a later closure that agrees, or by agreeing with the last one accepted.
     const bool corridor = options.corridor_confirmation;
     const auto candidates_end =
         corridor || pending.empty() ? pending.rend() : std::next(pending.rbegin());

@@ -84,6 +84,12 @@ struct LoopClosureOptions {
   // A match must score at least this (mean M of its points, 0..1) and have this many points.
   double min_score = 0.65;
   int min_points = 40;
+  // A search's best match scoring at least this but under min_score is held back like a closure
+  // off the prediction: added only when a later closure agrees with it (or it agrees with the
+  // last closure accepted), as a revisit of open space with few features scores low but its
+  // neighbours agree with it, and an aliased match rarely has one that does. 0: off (such
+  // matches are dropped).
+  double consistent_min_score = 0.0;
   // Returns on cells the submap never observed count as just under min_score in the search
   // (neither for nor against, and never enough for a pose with all its returns there), and an
   // accepted match needs min_known_fraction of its returns on observed cells scoring min_score

@@ -128,6 +128,37 @@ TEST(LoopClosureTest, ClosingTheLoopsRemovesTheDrift) {
       << " accepted, " << stats.gated << " gated, " << stats.rejected << " rejected";
 }
 
+// With every match under min_score (it is set out of reach) but above consistent_min_score, no
+// closure is added on its own score: the first one found waits, and is added with the next that
+// agrees with it. Without consistent_min_score the same matches are dropped and the drift stays.
+TEST(LoopClosureTest, WeakMatchesAreAddedOnlyWhenTheyAgree) {
+  const LoopRun run = DriveTwoLaps(DegToRad(0.05));
+  LoopClosureOptions weak_only;
+  weak_only.min_score = 1.0;
+  weak_only.consistent_min_score = 0.5;
+  LoopCloser closer(weak_only);
+  std::size_t i = 0;
+  while (i < run.scans.size() && closer.statistics().found == 0) {
+    closer.AddNode(run.scans[i], run.drifted[i]);
+    ++i;
+  }
+  ASSERT_EQ(closer.statistics().found, 1);
+  EXPECT_EQ(closer.statistics().accepted, 0);
+  EXPECT_EQ(closer.statistics().gated, 1);
+  for (; i < run.scans.size(); ++i) closer.AddNode(run.scans[i], run.drifted[i]);
+  const LoopClosureStatistics stats = closer.statistics();
+  EXPECT_GE(stats.accepted, 5);
+  EXPECT_LT(testing::MaxPositionError(closer.estimate(), run.truth), 0.3)
+      << stats.found << " found, " << stats.accepted << " accepted, " << stats.gated
+      << " held back, " << stats.rejected << " rejected";
+
+  LoopClosureOptions dropped = weak_only;
+  dropped.consistent_min_score = 0.0;
+  const LoopClosureResult none = CloseLoops(Pointers(run.scans), run.drifted, dropped);
+  EXPECT_EQ(none.statistics.found, 0);
+  EXPECT_GT(testing::MaxPositionError(none.poses, run.truth), 1.5);
+}
+
 void ExpectSameResult(const LoopClosureResult& a, const LoopClosureResult& b) {
   EXPECT_EQ(a.statistics.found, b.statistics.found);
   EXPECT_EQ(a.statistics.accepted, b.statistics.accepted);

@@ -212,6 +212,7 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                       {"corridor_confirmation", &l.corridor_confirmation},
                       {"confirm_min_separation_meters", &l.confirm_min_separation_meters},
                       {"min_score", &l.min_score},
+                      {"consistent_min_score", &l.consistent_min_score},
                       {"min_points", &l.min_points},
                       {"match_max_range_meters", &l.match_max_range_meters},
                       {"match_beam_step", &l.match_beam_step},
