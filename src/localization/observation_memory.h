@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "core/pose2.h"
-#include "localization/prelocalization.h"
+#include "localization/observed_object.h"
 
 // The objects seen over the last frames, carried into the current robot frame by odometry.
 // A robot that turns in place to relocalize sees its surroundings one camera field of view at a
