@@ -1,4 +1,4 @@
-#include "eval/reloc_benchmark.h"
+#include "eval/reloc_scoring.h"
 
 #include <gtest/gtest.h>
 
