@@ -178,6 +178,146 @@ FittedShape FitPart(const SemanticGrid& grid, int c, const ObjectPart& part,
   return FitShape(points, weights, view, prior, free_points);
 }
 
+// A class's evidence above the threshold and its regions: the evidence closed and opened,
+// labelled by connected components, those the detections bridge joined.
+struct ClassRegions {
+  cv::Mat evidence;  // CV_8U, 255 where the class's evidence is above the threshold
+  cv::Mat labels;    // CV_32S, regions 1 .. count - 1 (0: none)
+  int count = 0;
+};
+
+ClassRegions FindClassRegions(const SemanticGrid& grid, int c, double threshold,
+                              const std::vector<const DetectionObservation*>& of_class,
+                              const ObjectExtractionOptions& o) {
+  ClassRegions regions;
+  regions.evidence = ClassMask(grid, c, threshold);
+  cv::Mat mask = regions.evidence.clone();
+  Morphology(mask, cv::MORPH_CLOSE, o.closing_kernel);
+  Morphology(mask, cv::MORPH_OPEN, o.opening_kernel);
+  const int components = cv::connectedComponents(mask, regions.labels, 8, CV_32S);
+  regions.count = JoinBridgedRegions(of_class, components, o, regions.labels);
+  return regions;
+}
+
+using DetectionsByFrame = std::map<int, std::vector<const DetectionObservation*>>;
+
+// The detections of the class on region 'label', by frame.
+DetectionsByFrame DetectionsOnRegion(const std::vector<const DetectionObservation*>& of_class,
+                                     const cv::Mat& labels, int label,
+                                     const ObjectExtractionOptions& o) {
+  DetectionsByFrame by_frame;
+  for (const DetectionObservation* observation : of_class) {
+    if (IsOn(*observation, labels, label, o.detection_overlap)) {
+      by_frame[observation->frame].push_back(observation);
+    }
+  }
+  return by_frame;
+}
+
+// The part (0 .. *parts - 1) of each of the region's cells: one part, or k when at least
+// min_split_frames frames saw k objects on the region at once, split around the detections of
+// the frame with exactly k there whose detections cover most cells.
+std::vector<int> SplitAmongObjects(const std::vector<Eigen::Vector2i>& region,
+                                   const DetectionsByFrame& by_frame,
+                                   const ObjectExtractionOptions& o, int* parts) {
+  // k = the most objects that at least min_split_frames frames saw on the region at once.
+  std::vector<int> per_frame;
+  for (const auto& [frame, list] : by_frame) per_frame.push_back(static_cast<int>(list.size()));
+  std::sort(per_frame.rbegin(), per_frame.rend());
+  const int k = per_frame.size() >= static_cast<std::size_t>(o.min_split_frames)
+                    ? per_frame[o.min_split_frames - 1]
+                    : 1;
+  std::vector<int> assignment(region.size(), 0);
+  *parts = 1;
+  if (k <= 1) return assignment;
+  // Seeds: the frame with exactly k detections here whose detections cover most cells.
+  const std::vector<const DetectionObservation*>* seeds = nullptr;
+  std::size_t best_cells = 0;
+  for (const auto& [frame, list] : by_frame) {
+    if (static_cast<int>(list.size()) != k) continue;
+    std::size_t total = 0;
+    for (const DetectionObservation* observation : list) total += observation->cells.size();
+    if (total > best_cells) {
+      best_cells = total;
+      seeds = &list;
+    }
+  }
+  if (seeds != nullptr) {
+    assignment = SplitRegion(region, *seeds);
+    *parts = k;
+  }
+  return assignment;
+}
+
+// One object part per part of the region, from the cells that carry evidence (closing only
+// joined them), with the class's detections on it.
+void AddRegionPieces(const std::vector<Eigen::Vector2i>& region, const std::vector<int>& assignment,
+                     int parts, const cv::Mat& evidence,
+                     const std::vector<DetectionObservation>& observations, int c,
+                     const ObjectExtractionOptions& o, std::vector<ObjectPart>* pieces) {
+  cv::Mat part_labels(evidence.size(), CV_32S, cv::Scalar(-1));
+  for (std::size_t i = 0; i < region.size(); ++i) {
+    part_labels.at<int>(region[i].y(), region[i].x()) = assignment[i];
+  }
+  for (int part = 0; part < parts; ++part) {
+    ObjectPart piece;
+    for (std::size_t i = 0; i < region.size(); ++i) {
+      const Eigen::Vector2i& cell = region[i];
+      if (assignment[i] == part && evidence.at<std::uint8_t>(cell.y(), cell.x())) {
+        piece.cells.push_back(cell);
+      }
+    }
+    for (std::size_t j = 0; j < observations.size(); ++j) {
+      const DetectionObservation& observation = observations[j];
+      if (observation.class_id == c && IsOn(observation, part_labels, part, o.detection_overlap)) {
+        piece.frames.insert(observation.frame);
+        piece.members.push_back(j);
+      }
+    }
+    if (!piece.cells.empty()) pieces->push_back(std::move(piece));
+  }
+}
+
+// The parts of class c's regions large enough and seen often enough, split where frames saw
+// several objects on one region.
+std::vector<ObjectPart> ClassPieces(const SemanticGrid& grid, int c, double threshold,
+                                    const std::vector<DetectionObservation>& observations,
+                                    const ObjectExtractionOptions& o) {
+  std::vector<const DetectionObservation*> of_class;
+  for (const DetectionObservation& observation : observations) {
+    if (observation.class_id == c) of_class.push_back(&observation);
+  }
+  const ClassRegions regions = FindClassRegions(grid, c, threshold, of_class, o);
+  std::vector<ObjectPart> pieces;
+  for (int label = 1; label < regions.count; ++label) {
+    std::vector<Eigen::Vector2i> region = CellsWithLabel(regions.labels, label);
+    if (static_cast<int>(region.size()) < o.min_cells) continue;
+    const DetectionsByFrame by_frame = DetectionsOnRegion(of_class, regions.labels, label, o);
+    if (static_cast<int>(by_frame.size()) < o.min_observations) continue;
+    int parts = 1;
+    const std::vector<int> assignment = SplitAmongObjects(region, by_frame, o, &parts);
+    AddRegionPieces(region, assignment, parts, regions.evidence, observations, c, o, &pieces);
+  }
+  return pieces;
+}
+
+// The object of a fitted part of class c: its confidence is the mean probability of its cells.
+SemanticObject ObjectOf(const FittedPart& fitted, const SemanticGrid& grid, int c,
+                        const std::string& class_name, int id) {
+  double probability_sum = 0.0;
+  for (const Eigen::Vector2i& cell : fitted.part.cells) {
+    probability_sum += grid.Probability(c, cell);
+  }
+  SemanticObject object;
+  object.id = id;
+  object.class_name = class_name;
+  object.center = fitted.shape.center;
+  object.footprint = fitted.shape.footprint;
+  object.observations = static_cast<int>(fitted.part.frames.size());
+  object.confidence = probability_sum / static_cast<double>(fitted.part.cells.size());
+  return object;
+}
+
 }  // namespace
 
 ExtractedObjects ExtractObjects(const SemanticGrid& grid,
@@ -188,88 +328,10 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
   const double threshold = LogitOf(o.occupied_probability);
   ExtractedObjects result;
   result.observation_object.assign(observations.size(), -1);
-
   for (int c = 0; c < grid.class_count(); ++c) {
-    const cv::Mat evidence = ClassMask(grid, c, threshold);
-    cv::Mat mask = evidence.clone();
-    Morphology(mask, cv::MORPH_CLOSE, o.closing_kernel);
-    Morphology(mask, cv::MORPH_OPEN, o.opening_kernel);
-    cv::Mat labels;
-    const int components = cv::connectedComponents(mask, labels, 8, CV_32S);
-
-    std::vector<const DetectionObservation*> of_class;
-    for (const DetectionObservation& observation : observations) {
-      if (observation.class_id == c) of_class.push_back(&observation);
-    }
-    const int count = JoinBridgedRegions(of_class, components, o, labels);
-
-    std::vector<ObjectPart> pieces;
-    for (int label = 1; label < count; ++label) {
-      std::vector<Eigen::Vector2i> region = CellsWithLabel(labels, label);
-      if (static_cast<int>(region.size()) < o.min_cells) continue;
-      // The detections on this region, by frame.
-      std::map<int, std::vector<const DetectionObservation*>> by_frame;
-      for (const DetectionObservation* observation : of_class) {
-        if (IsOn(*observation, labels, label, o.detection_overlap)) {
-          by_frame[observation->frame].push_back(observation);
-        }
-      }
-      if (static_cast<int>(by_frame.size()) < o.min_observations) continue;
-      // k = the most objects that at least min_split_frames frames saw on the region at once.
-      std::vector<int> per_frame;
-      for (const auto& [frame, list] : by_frame) per_frame.push_back(static_cast<int>(list.size()));
-      std::sort(per_frame.rbegin(), per_frame.rend());
-      const int k = per_frame.size() >= static_cast<std::size_t>(o.min_split_frames)
-                        ? per_frame[o.min_split_frames - 1]
-                        : 1;
-      std::vector<int> assignment(region.size(), 0);
-      int parts = 1;
-      if (k > 1) {
-        // Seeds: the frame with exactly k detections here whose detections cover most cells.
-        const std::vector<const DetectionObservation*>* seeds = nullptr;
-        std::size_t best_cells = 0;
-        for (const auto& [frame, list] : by_frame) {
-          if (static_cast<int>(list.size()) != k) continue;
-          std::size_t total = 0;
-          for (const DetectionObservation* observation : list) total += observation->cells.size();
-          if (total > best_cells) {
-            best_cells = total;
-            seeds = &list;
-          }
-        }
-        if (seeds != nullptr) {
-          assignment = SplitRegion(region, *seeds);
-          parts = k;
-        }
-      }
-
-      // One object per part, from the cells that carry evidence (closing only joined them).
-      cv::Mat part_labels(labels.size(), CV_32S, cv::Scalar(-1));
-      for (std::size_t i = 0; i < region.size(); ++i) {
-        part_labels.at<int>(region[i].y(), region[i].x()) = assignment[i];
-      }
-      for (int part = 0; part < parts; ++part) {
-        ObjectPart piece;
-        for (std::size_t i = 0; i < region.size(); ++i) {
-          const Eigen::Vector2i& cell = region[i];
-          if (assignment[i] == part && evidence.at<std::uint8_t>(cell.y(), cell.x())) {
-            piece.cells.push_back(cell);
-          }
-        }
-        for (std::size_t j = 0; j < observations.size(); ++j) {
-          const DetectionObservation& observation = observations[j];
-          if (observation.class_id == c &&
-              IsOn(observation, part_labels, part, o.detection_overlap)) {
-            piece.frames.insert(observation.frame);
-            piece.members.push_back(j);
-          }
-        }
-        if (!piece.cells.empty()) pieces.push_back(std::move(piece));
-      }
-    }
     const ClassShapePrior prior = options.PriorOf(classes[c]);
-    std::vector<ObjectPart> parts =
-        MergeFragments(std::move(pieces), prior, grid.geometry().resolution, o);
+    std::vector<ObjectPart> parts = MergeFragments(ClassPieces(grid, c, threshold, observations, o),
+                                                   prior, grid.geometry().resolution, o);
     // Specks: too small or too rarely seen to be objects (nor to move one by joining it).
     std::erase_if(parts, [&o](const ObjectPart& part) {
       return static_cast<int>(part.cells.size()) < o.min_cells ||
@@ -279,17 +341,8 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
       return FitPart(grid, c, part, prior, free_space);
     };
     for (const FittedPart& fitted : AssociateParts(std::move(parts), fit, prior, o)) {
-      double probability_sum = 0.0;
-      for (const Eigen::Vector2i& cell : fitted.part.cells) {
-        probability_sum += grid.Probability(c, cell);
-      }
-      SemanticObject object;
-      object.id = static_cast<int>(result.objects.size());
-      object.class_name = classes[c];
-      object.center = fitted.shape.center;
-      object.footprint = fitted.shape.footprint;
-      object.observations = static_cast<int>(fitted.part.frames.size());
-      object.confidence = probability_sum / static_cast<double>(fitted.part.cells.size());
+      SemanticObject object =
+          ObjectOf(fitted, grid, c, classes[c], static_cast<int>(result.objects.size()));
       for (std::size_t j : fitted.part.members) result.observation_object[j] = object.id;
       result.objects.push_back(std::move(object));
     }
