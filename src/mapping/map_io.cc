@@ -2,10 +2,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "drawing/png.h"
 #include "io/yaml_reader.h"
 #include "mapping/pgm_image.h"
 
@@ -211,12 +211,7 @@ Status WriteMapPng(const std::filesystem::path& png_path, const MapImage& map) {
       image.at<std::uint8_t>(row, x) = CellToPixel(plain, pixels, map.At(x, map.height - 1 - row));
     }
   }
-  std::vector<std::uint8_t> buffer;
-  if (!cv::imencode(".png", image, buffer)) {
-    return Status::Error(png_path.string() + ": cannot encode PNG");
-  }
-  return WriteFileAtomically(
-      png_path, std::string_view(reinterpret_cast<const char*>(buffer.data()), buffer.size()));
+  return drawing::WritePng(image, png_path);
 }
 
 }  // namespace semchain::mapping

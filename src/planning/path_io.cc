@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/atomic_file.h"
+#include "drawing/png.h"
 
 namespace semchain::planning {
 namespace {
@@ -75,12 +75,7 @@ cv::Mat DrawRoute(const mapping::MapImage& map, const Costmap& costmap, const Ro
 }
 
 Status WriteRoutePng(const std::filesystem::path& path, const cv::Mat& image) {
-  std::vector<std::uint8_t> buffer;
-  if (!cv::imencode(".png", image, buffer)) {
-    return Status::Error(path.string() + ": cannot encode PNG");
-  }
-  return WriteFileAtomically(
-      path, std::string_view(reinterpret_cast<const char*>(buffer.data()), buffer.size()));
+  return drawing::WritePng(image, path);
 }
 
 }  // namespace semchain::planning
