@@ -7,60 +7,68 @@
 
 namespace semchain::eval {
 
+namespace {
+
+nlohmann::json MethodStatsJson(const RelocMethodStats& s) {
+  return {{"trials", s.trials},
+          {"successes", s.successes},
+          {"success_rate", s.success_rate},
+          {"mean_time_s", s.mean_time_s},
+          {"mean_cpu_ms", s.mean_cpu_ms},
+          {"mean_search_cpu_ms", s.mean_search_cpu_ms},
+          {"mean_time_all_s", s.mean_time_all_s},
+          {"mean_cpu_all_ms", s.mean_cpu_all_ms},
+          {"mean_search_cpu_all_ms", s.mean_search_cpu_all_ms},
+          {"mean_iterations", s.mean_iterations},
+          {"mean_error_m", s.mean_error_m},
+          {"mean_error_deg", s.mean_error_deg},
+          {"prelocalized", s.prelocalized},
+          {"prelocalization_error_x_m", s.prelocalization_error_x_m},
+          {"prelocalization_error_y_m", s.prelocalization_error_y_m},
+          {"prelocalization_error_deg", s.prelocalization_error_deg},
+          {"prelocalization_error_map_x_m", s.prelocalization_error_map_x_m},
+          {"prelocalization_error_map_y_m", s.prelocalization_error_map_y_m}};
+}
+
+nlohmann::json TrialRecordJson(const RelocTrialRecord& r) {
+  nlohmann::json prelocalization_error = nullptr;
+  if (r.prelocalization_error) {
+    prelocalization_error = {r.prelocalization_error->x(), r.prelocalization_error->y(),
+                             r.prelocalization_error->z()};
+  }
+  nlohmann::json prelocalization_error_map = nullptr;
+  if (r.prelocalization_error_map) {
+    prelocalization_error_map = {r.prelocalization_error_map->x(),
+                                 r.prelocalization_error_map->y()};
+  }
+  return {{"trial", r.trial},
+          {"start", {r.start[0], r.start[1], r.start[2]}},
+          {"success", r.success},
+          {"time_s", r.time_s},
+          {"cpu_ms", r.cpu_ms},
+          {"search_cpu_ms", r.search_cpu_ms},
+          {"search_cpu_trial_ms", r.search_cpu_trial_ms},
+          {"localized", r.localized},
+          {"error_m", r.error_m},
+          {"error_deg", r.error_deg},
+          {"prelocalizations", r.prelocalizations},
+          {"single_object_prelocalizations", r.single_object_prelocalizations},
+          {"undecided_prelocalizations", r.undecided_prelocalizations},
+          {"lock_corrections", r.lock_corrections},
+          {"lock_rechecks", r.lock_rechecks},
+          {"prelocalization_error", prelocalization_error},
+          {"prelocalization_error_map", prelocalization_error_map}};
+}
+
+}  // namespace
+
 std::string RelocResultsJson(const RelocBenchmarkResult& result) {
   nlohmann::json methods = nlohmann::json::object();
-  for (const auto& [name, s] : result.methods) {
-    methods[name] = {{"trials", s.trials},
-                     {"successes", s.successes},
-                     {"success_rate", s.success_rate},
-                     {"mean_time_s", s.mean_time_s},
-                     {"mean_cpu_ms", s.mean_cpu_ms},
-                     {"mean_search_cpu_ms", s.mean_search_cpu_ms},
-                     {"mean_time_all_s", s.mean_time_all_s},
-                     {"mean_cpu_all_ms", s.mean_cpu_all_ms},
-                     {"mean_search_cpu_all_ms", s.mean_search_cpu_all_ms},
-                     {"mean_iterations", s.mean_iterations},
-                     {"mean_error_m", s.mean_error_m},
-                     {"mean_error_deg", s.mean_error_deg},
-                     {"prelocalized", s.prelocalized},
-                     {"prelocalization_error_x_m", s.prelocalization_error_x_m},
-                     {"prelocalization_error_y_m", s.prelocalization_error_y_m},
-                     {"prelocalization_error_deg", s.prelocalization_error_deg},
-                     {"prelocalization_error_map_x_m", s.prelocalization_error_map_x_m},
-                     {"prelocalization_error_map_y_m", s.prelocalization_error_map_y_m}};
-  }
+  for (const auto& [name, s] : result.methods) methods[name] = MethodStatsJson(s);
   nlohmann::json runs = nlohmann::json::object();
   for (const auto& [name, records] : result.runs) {
     nlohmann::json list = nlohmann::json::array();
-    for (const RelocTrialRecord& r : records) {
-      nlohmann::json prelocalization_error = nullptr;
-      if (r.prelocalization_error) {
-        prelocalization_error = {r.prelocalization_error->x(), r.prelocalization_error->y(),
-                                 r.prelocalization_error->z()};
-      }
-      nlohmann::json prelocalization_error_map = nullptr;
-      if (r.prelocalization_error_map) {
-        prelocalization_error_map = {r.prelocalization_error_map->x(),
-                                     r.prelocalization_error_map->y()};
-      }
-      list.push_back({{"trial", r.trial},
-                      {"start", {r.start[0], r.start[1], r.start[2]}},
-                      {"success", r.success},
-                      {"time_s", r.time_s},
-                      {"cpu_ms", r.cpu_ms},
-                      {"search_cpu_ms", r.search_cpu_ms},
-                      {"search_cpu_trial_ms", r.search_cpu_trial_ms},
-                      {"localized", r.localized},
-                      {"error_m", r.error_m},
-                      {"error_deg", r.error_deg},
-                      {"prelocalizations", r.prelocalizations},
-                      {"single_object_prelocalizations", r.single_object_prelocalizations},
-                      {"undecided_prelocalizations", r.undecided_prelocalizations},
-                      {"lock_corrections", r.lock_corrections},
-                      {"lock_rechecks", r.lock_rechecks},
-                      {"prelocalization_error", prelocalization_error},
-                      {"prelocalization_error_map", prelocalization_error_map}});
-    }
+    for (const RelocTrialRecord& r : records) list.push_back(TrialRecordJson(r));
     runs[name] = list;
   }
   const nlohmann::json root = {{"world", result.world},

@@ -6,6 +6,28 @@
 
 namespace semchain::eval {
 
+namespace {
+
+// The first pre-localization's error against the truth at its scan (and, with 'map_frame', in
+// the map's frame), when there was one.
+void ScorePreLocalization(const localization::RelocTrace& trace,
+                          const std::vector<StampedPose>& truth, const MapFrame* map_frame,
+                          RelocTrialOutcome* outcome) {
+  if (!trace.prelocalization || trace.prelocalization_scan < 0) return;
+  outcome->prelocalized = true;
+  const Pose2& t = truth[static_cast<std::size_t>(trace.prelocalization_scan)].pose;
+  outcome->prelocalization_error =
+      (trace.prelocalization->translation() - t.translation()).cwiseAbs();
+  outcome->prelocalization_error_rad =
+      std::abs(NormalizeAngle(trace.prelocalization->theta - t.theta));
+  if (map_frame != nullptr) {
+    outcome->prelocalization_error_map =
+        (trace.prelocalization->translation() - map_frame->FromWorld(t).translation()).cwiseAbs();
+  }
+}
+
+}  // namespace
+
 RelocTrialOutcome ScoreRelocTrace(const localization::RelocTrace& trace,
                                   const std::vector<StampedPose>& truth,
                                   const RelocBenchmarkOptions& options, const MapFrame* map_frame) {
@@ -24,18 +46,7 @@ RelocTrialOutcome ScoreRelocTrace(const localization::RelocTrace& trace,
     if (!within(i)) break;
     first = i;
   }
-  if (trace.prelocalization && trace.prelocalization_scan >= 0) {
-    outcome.prelocalized = true;
-    const Pose2& t = truth[static_cast<std::size_t>(trace.prelocalization_scan)].pose;
-    outcome.prelocalization_error =
-        (trace.prelocalization->translation() - t.translation()).cwiseAbs();
-    outcome.prelocalization_error_rad =
-        std::abs(NormalizeAngle(trace.prelocalization->theta - t.theta));
-    if (map_frame != nullptr) {
-      outcome.prelocalization_error_map =
-          (trace.prelocalization->translation() - map_frame->FromWorld(t).translation()).cwiseAbs();
-    }
-  }
+  ScorePreLocalization(trace, truth, map_frame, &outcome);
   if (n > 0 && trace.estimates.back()) {
     outcome.localized = true;
     const Pose2& e = *trace.estimates.back();

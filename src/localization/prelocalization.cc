@@ -20,6 +20,34 @@ namespace {
 constexpr int kRefinements = 4;
 constexpr double kSettledMeters = 1e-3;
 
+// Where an object's centre is in the robot frame, the camera having seen its surface: behind the
+// surface by the centre's depth 'behind' in the direction seen.
+Eigen::Vector2d CentreInRobot(const ObservedObject& s, double behind) {
+  return Eigen::Vector2d(s.surface + behind * UnitDirection(s.surface));
+}
+
+// Moves the intersection 'x' of the circles around mapped objects 'oa' and 'ob' (seen as 'si'
+// and 'sj') to where it is with the depth behind the surface seen from it (a fixed point: the
+// depth depends on the direction, the direction on the position); 'pi' and 'pj' are the centres
+// in the robot frame seen from there. False when the circles no longer meet.
+bool SettleOnCircles(const semantic::SemanticObject& oa, const semantic::SemanticObject& ob,
+                     const ObservedObject& si, const ObservedObject& sj, double slack,
+                     Eigen::Vector2d* x, Eigen::Vector2d* pi, Eigen::Vector2d* pj) {
+  for (int iteration = 0; iteration < kRefinements; ++iteration) {
+    *pi = CentreInRobot(si, CenterBehindSurface(oa, UnitDirection(*x - oa.center)));
+    *pj = CentreInRobot(sj, CenterBehindSurface(ob, UnitDirection(*x - ob.center)));
+    Eigen::Vector2d refined[2];
+    const int n = IntersectCircles(oa.center, pi->norm(), ob.center, pj->norm(), slack, refined);
+    if (n == 0) return false;
+    const Eigen::Vector2d next =
+        n == 2 && (refined[1] - *x).norm() < (refined[0] - *x).norm() ? refined[1] : refined[0];
+    const bool settled = (next - *x).norm() < kSettledMeters;
+    *x = next;
+    if (settled) break;
+  }
+  return true;
+}
+
 }  // namespace
 
 PreLocalizer::PreLocalizer(const semantic::SemanticMap& map, const mapping::MapImage& occupancy,
@@ -68,18 +96,13 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
   const semantic::SemanticObject& ob = objects_[b];
   const ObservedObject& si = observed[i];
   const ObservedObject& sj = observed[j];
-  // Where the objects' centres are in the robot frame, the camera having seen their surfaces:
-  // behind the surface by the centre's depth in the direction seen (refined below).
-  const auto centre_in_robot = [](const ObservedObject& s, double behind) {
-    return Eigen::Vector2d(s.surface + behind * UnitDirection(s.surface));
-  };
   Eigen::Vector2d points[2];
   // Range errors grow with range: far circles may miss each other by more.
   const double slack =
       options_.circle_slack + options_.circle_slack_per_metre * (si.range + sj.range);
   const int count = IntersectCircles(
-      oa.center, centre_in_robot(si, mean_behind_[static_cast<std::size_t>(a)]).norm(), ob.center,
-      centre_in_robot(sj, mean_behind_[static_cast<std::size_t>(b)]).norm(), slack, points);
+      oa.center, CentreInRobot(si, mean_behind_[static_cast<std::size_t>(a)]).norm(), ob.center,
+      CentreInRobot(sj, mean_behind_[static_cast<std::size_t>(b)]).norm(), slack, points);
   const double sigma =
       options_.position_std_base + options_.position_std_per_metre * 0.5 * (si.range + sj.range);
   // A position off by sigma turns the bearing of an object at range r by up to sigma / r: the
@@ -93,27 +116,10 @@ void PreLocalizer::AddPairHypotheses(const std::vector<ObservedObject>& observed
            : 0.0);
   const double min_heading_cosine = heading_tolerance >= kPi ? -2.0 : std::cos(heading_tolerance);
   for (int k = 0; k < count; ++k) {
-    // Refine with the depth behind the surface seen from this position (a fixed point: the
-    // depth depends on the direction, the direction on the position).
+    // Refined with the depth behind the surface seen from this position.
     Eigen::Vector2d x = points[k];
     Eigen::Vector2d pi, pj;
-    bool lost = false;
-    for (int iteration = 0; iteration < kRefinements; ++iteration) {
-      pi = centre_in_robot(si, CenterBehindSurface(oa, UnitDirection(x - oa.center)));
-      pj = centre_in_robot(sj, CenterBehindSurface(ob, UnitDirection(x - ob.center)));
-      Eigen::Vector2d refined[2];
-      const int n = IntersectCircles(oa.center, pi.norm(), ob.center, pj.norm(), slack, refined);
-      if (n == 0) {
-        lost = true;
-        break;
-      }
-      const Eigen::Vector2d next =
-          n == 2 && (refined[1] - x).norm() < (refined[0] - x).norm() ? refined[1] : refined[0];
-      const bool settled = (next - x).norm() < kSettledMeters;
-      x = next;
-      if (settled) break;
-    }
-    if (lost) continue;
+    if (!SettleOnCircles(oa, ob, si, sj, slack, &x, &pi, &pj)) continue;
     // The heading each bearing gives at a position; the mirror solution disagrees.
     const auto headings_agree = [&](const Eigen::Vector2d& at) {
       return HeadingFrom(at, oa.center, pi).dot(HeadingFrom(at, ob.center, pj)) >=

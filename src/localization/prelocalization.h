@@ -135,6 +135,12 @@ class PreLocalizer {
             const std::function<double(const Pose2&)>& laser_score,
             const std::function<Pose2(const Pose2&)>& laser_refine, double min_laser_score,
             int min_agreeing, std::vector<PoseCandidate>* candidates) const;
+  // Rate's laser part: each candidate's laser score; those explaining the most objects that fit
+  // below the cut are refined by the laser first (one per place), then the cut drops the rest.
+  void RateByLaser(const std::vector<ObservedObject>& observed, const std::vector<int>& classes,
+                   const std::function<double(const Pose2&)>& laser_score,
+                   const std::function<Pose2(const Pose2&)>& laser_refine, double min_laser_score,
+                   std::vector<PoseCandidate>* candidates) const;
 
   std::vector<semantic::SemanticObject> objects_;
   // Per object: the largest distance from its centre to its outline (a bound on the centre's

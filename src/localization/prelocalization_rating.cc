@@ -153,50 +153,59 @@ void PreLocalizer::Rate(const std::vector<ObservedObject>& observed,
   std::erase_if(*candidates,
                 [min_agreeing](const PoseCandidate& c) { return c.agreeing < min_agreeing; });
   if (laser_score) {
-    int most_agreeing = 0;           // over all candidates
-    int most_agreeing_passing = -1;  // over those the laser's cut lets through
-    for (PoseCandidate& candidate : *candidates) {
-      candidate.laser_score = laser_score(candidate.pose);
-      most_agreeing = std::max(most_agreeing, candidate.agreeing);
-      if (candidate.laser_score >= min_laser_score) {
-        most_agreeing_passing = std::max(most_agreeing_passing, candidate.agreeing);
-      }
-    }
-    // The laser's fit is sharp (σ 0.05 m): a pose the objects put 0.2 m off the right place may
-    // fit worse than the cut while a look-alike place that happens to be placed better passes
-    // it. So a candidate below the cut that could still rank with the best — it explains as
-    // many objects as the best that passes, or the most of all when none passes — is refined by
-    // the laser before it is judged (refining every candidate would cost a Ceres solve for each
-    // of what may be hundreds).
-    const int worth_refining = most_agreeing_passing >= 0 ? most_agreeing_passing : most_agreeing;
-    // Several pairs give hypotheses at one place, and BestDistinct keeps one of them: refine only
-    // the best-fitting hypothesis per place (a Ceres solve each; a dozen look-alike offices give
-    // dozens of them per frame), and none where one passing the cut explains as many objects.
-    std::vector<std::size_t> order;
-    for (std::size_t k = 0; k < candidates->size(); ++k) {
-      const PoseCandidate& c = (*candidates)[k];
-      if (c.laser_score < min_laser_score && c.agreeing >= worth_refining) order.push_back(k);
-    }
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-      return (*candidates)[x].laser_score > (*candidates)[y].laser_score;
-    });
-    std::vector<const PoseCandidate*> places;
-    for (const PoseCandidate& c : *candidates) {
-      if (c.laser_score >= min_laser_score) places.push_back(&c);
-    }
-    for (const std::size_t k : order) {
-      PoseCandidate& candidate = (*candidates)[k];
-      const bool placed = std::any_of(places.begin(), places.end(), [&](const PoseCandidate* p) {
-        return p->agreeing >= candidate.agreeing && SamePlace(p->pose, candidate.pose);
-      });
-      if (placed) continue;
-      RefineOneByLaser(observed, classes, laser_score, laser_refine, &candidate);
-      places.push_back(&candidate);
-    }
-    std::erase_if(*candidates, [min_laser_score](const PoseCandidate& c) {
-      return c.laser_score < min_laser_score;
-    });
+    RateByLaser(observed, classes, laser_score, laser_refine, min_laser_score, candidates);
   }
+}
+
+void PreLocalizer::RateByLaser(const std::vector<ObservedObject>& observed,
+                               const std::vector<int>& classes,
+                               const std::function<double(const Pose2&)>& laser_score,
+                               const std::function<Pose2(const Pose2&)>& laser_refine,
+                               double min_laser_score,
+                               std::vector<PoseCandidate>* candidates) const {
+  int most_agreeing = 0;           // over all candidates
+  int most_agreeing_passing = -1;  // over those the laser's cut lets through
+  for (PoseCandidate& candidate : *candidates) {
+    candidate.laser_score = laser_score(candidate.pose);
+    most_agreeing = std::max(most_agreeing, candidate.agreeing);
+    if (candidate.laser_score >= min_laser_score) {
+      most_agreeing_passing = std::max(most_agreeing_passing, candidate.agreeing);
+    }
+  }
+  // The laser's fit is sharp (σ 0.05 m): a pose the objects put 0.2 m off the right place may
+  // fit worse than the cut while a look-alike place that happens to be placed better passes
+  // it. So a candidate below the cut that could still rank with the best — it explains as
+  // many objects as the best that passes, or the most of all when none passes — is refined by
+  // the laser before it is judged (refining every candidate would cost a Ceres solve for each
+  // of what may be hundreds).
+  const int worth_refining = most_agreeing_passing >= 0 ? most_agreeing_passing : most_agreeing;
+  // Several pairs give hypotheses at one place, and BestDistinct keeps one of them: refine only
+  // the best-fitting hypothesis per place (a Ceres solve each; a dozen look-alike offices give
+  // dozens of them per frame), and none where one passing the cut explains as many objects.
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < candidates->size(); ++k) {
+    const PoseCandidate& c = (*candidates)[k];
+    if (c.laser_score < min_laser_score && c.agreeing >= worth_refining) order.push_back(k);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return (*candidates)[x].laser_score > (*candidates)[y].laser_score;
+  });
+  std::vector<const PoseCandidate*> places;
+  for (const PoseCandidate& c : *candidates) {
+    if (c.laser_score >= min_laser_score) places.push_back(&c);
+  }
+  for (const std::size_t k : order) {
+    PoseCandidate& candidate = (*candidates)[k];
+    const bool placed = std::any_of(places.begin(), places.end(), [&](const PoseCandidate* p) {
+      return p->agreeing >= candidate.agreeing && SamePlace(p->pose, candidate.pose);
+    });
+    if (placed) continue;
+    RefineOneByLaser(observed, classes, laser_score, laser_refine, &candidate);
+    places.push_back(&candidate);
+  }
+  std::erase_if(*candidates, [min_laser_score](const PoseCandidate& c) {
+    return c.laser_score < min_laser_score;
+  });
 }
 
 void PreLocalizer::RefineOneByLaser(const std::vector<ObservedObject>& observed,
