@@ -70,7 +70,7 @@ Pose2 LaserOdometry::Add(const StampedScan& scan, const PreparedScan& prepared) 
     Pose2 prediction;
     const MatchResult match =
         MatchBest(field, sparse, pose, velocity, options_.matcher, &prediction);
-    const int available = static_cast<int>(sparse.size()) * options_.match_beam_step;
+    const int available = sparse.measured * options_.match_beam_step;
     if (match.evaluation.matched * options_.match_beam_step >=
         RequiredMatches(options_.min_matched_points, available)) {
       pose = match.pose;

@@ -36,6 +36,7 @@ PreparedScan PrepareScan(const LaserScan& scan, const Pose2& laser_offset,
     const double angle = laser_offset.theta + scan.BeamAngle(i);
     const Eigen::Vector2d direction(std::cos(angle), std::sin(angle));
     const double range = scan.ranges[i];
+    if (range >= options.min_range_meters) ++prepared.measured;
     double length = 0.0;
     bool hit = false;
     if (scan.IsReturn(i) && range >= options.min_range_meters) {
@@ -62,6 +63,8 @@ MatchPoints SelectMatchPoints(const PreparedScan& scan, double max_range_meters,
     points.points.push_back(beam.endpoint);
     points.directions.push_back(beam.direction);
   }
+  const int step = std::max(1, beam_step);
+  points.measured = std::max((scan.measured + step - 1) / step, static_cast<int>(points.size()));
   return points;
 }
 

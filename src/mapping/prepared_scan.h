@@ -35,6 +35,10 @@ struct PreparedScan {
   double timestamp = 0.0;
   Eigen::Vector2d sensor_origin = Eigen::Vector2d::Zero();  // laser position, robot frame
   std::vector<PreparedBeam> beams;
+  // Readings that measured something: a return at any range, or no echo within the sensor's
+  // max range (open space). Not the zero readings of a sensor that measured nothing in that
+  // direction (a Neato's 70 %). How many returns a scan match must find is relative to this.
+  int measured = 0;
   int HitCount() const;
 };
 
@@ -46,6 +50,9 @@ PreparedScan PrepareScan(const LaserScan& scan, const Pose2& laser_offset,
 struct MatchPoints {
   std::vector<Eigen::Vector2d> points;
   std::vector<Eigen::Vector2d> directions;
+  // The scan's measured readings at this selection's beam step (at least its points): what it
+  // could have held had every measured reading returned within range.
+  int measured = 0;
   std::size_t size() const { return points.size(); }
 };
 

@@ -52,8 +52,7 @@ ProposalEvaluation EvaluateProposal(const LikelihoodField& field, const MatchPoi
     const MatchResult match = MatchWithHeadingSearch(field, points, start, matcher,
                                                      options.heading_search, motion_sigmas.z());
     evaluation.matched =
-        match.evaluation.matched >=
-        RequiredMatches(options.min_matched_points, static_cast<int>(points.size()));
+        match.evaluation.matched >= RequiredMatches(options.min_matched_points, points.measured);
     if (evaluation.matched) {
       evaluation.mode = match.pose;
       if (options.mode_refinement.enabled) {

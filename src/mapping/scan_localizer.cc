@@ -53,7 +53,7 @@ LocalizationResult LocalizeScan(const LikelihoodField& field, const PreparedScan
   const MatchPoints sparse =
       SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step);
   const MatchResult match = HillClimb(field, sparse, prior, options.matcher);
-  const int available = static_cast<int>(sparse.size()) * options.match_beam_step;
+  const int available = sparse.measured * options.match_beam_step;
   if (match.evaluation.matched * options.match_beam_step <
       RequiredMatches(options.min_matched_points, available)) {
     return {prior, false};
