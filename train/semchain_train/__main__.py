@@ -109,7 +109,8 @@ def _run_train(args: argparse.Namespace) -> int:
             checkpoint = load_checkpoint(args.weights)
             if checkpoint.names != names:
                 raise CommandError(f"{args.weights}: its classes {checkpoint.names} are not {args.data}'s {names}")
-            model = checkpoint.model.train()
+            # A checkpoint's model is its EMA copy, whose parameters are frozen.
+            model = checkpoint.model.train().requires_grad_(True)
         else:
             from semchain_train.model.config import ModelConfig
             from semchain_train.model.detector import build_detector

@@ -122,3 +122,11 @@ def test_train_then_resume_an_n_model(tmp_path: Path) -> None:
     after = load_checkpoint(run / "last.pt")
     assert after.epoch == 0
     assert all(torch.equal(a, b) for a, b in zip(checkpoint.model.state_dict().values(), after.model.state_dict().values()))
+    # A next stage starts from the run's best.pt (its EMA weights) and trains them.
+    stage = tmp_path / "stage"
+    next_stage = run_cli("train", "--data", str(data), "--out", str(stage), "--weights", str(run / "best.pt"), "--epochs", "1",
+                         "--lr0", "0.01", *common)
+    assert next_stage.returncode == 0, next_stage.stderr
+    trained = load_checkpoint(stage / "last.pt").raw["model"]
+    started = load_checkpoint(run / "best.pt").model
+    assert any(not torch.equal(a, b) for a, b in zip(started.state_dict().values(), trained.state_dict().values()))
