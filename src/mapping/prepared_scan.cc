@@ -55,15 +55,15 @@ PreparedScan PrepareScan(const LaserScan& scan, const Pose2& laser_offset,
 MatchPoints SelectMatchPoints(const PreparedScan& scan, double max_range_meters, int beam_step) {
   MatchPoints points;
   const double max_squared = max_range_meters * max_range_meters;
+  const int step = std::max(1, beam_step);
   int index = 0;
   for (const PreparedBeam& beam : scan.beams) {
     if (!beam.hit) continue;
     if ((beam.endpoint - scan.sensor_origin).squaredNorm() > max_squared) continue;
-    if (index++ % std::max(1, beam_step) != 0) continue;
+    if (index++ % step != 0) continue;
     points.points.push_back(beam.endpoint);
     points.directions.push_back(beam.direction);
   }
-  const int step = std::max(1, beam_step);
   points.measured = std::max((scan.measured + step - 1) / step, static_cast<int>(points.size()));
   return points;
 }
