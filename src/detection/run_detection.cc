@@ -27,11 +27,11 @@ Result<std::map<std::string, double>> RecordedStamps(const fs::path& run_dir) {
 
 }  // namespace
 
-void MeasureDepths(const cv::Mat& depth_m, const RunDetectionOptions& options,
-                   std::vector<Detection>& detections) {
+void MeasureDepths(const cv::Mat& depth_m, const MountedCamera* camera,
+                   const RunDetectionOptions& options, std::vector<Detection>& detections) {
   std::vector<Detection> kept;
   for (Detection& detection : detections) {
-    const std::optional<double> depth = BoxDepth(depth_m, detection.box, options.depth);
+    const std::optional<double> depth = BoxDepth(depth_m, detection.box, camera, options.depth);
     if (!depth && !options.keep_without_depth) continue;
     detection.depth_m = depth.value_or(0.0);
     kept.push_back(std::move(detection));
@@ -95,7 +95,7 @@ Result<std::vector<FrameDetections>> DetectRunFrames(Detector& detector, const f
     Result<std::vector<Detection>> detections = detector.Detect(*rgb);
     if (!detections.ok()) return detections.status().WithContext(frame.frame);
     FrameDetections result{frame.frame, frame.stamp, std::move(*detections)};
-    MeasureDepths(*depth, options, result.detections);
+    MeasureDepths(*depth, &camera->camera, options, result.detections);
     if (sink) SEMCHAIN_RETURN_IF_ERROR(sink(*rgb, result));
     results.push_back(std::move(result));
     if (progress) progress->Update(results.size());

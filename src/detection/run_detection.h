@@ -40,9 +40,10 @@ struct RunDetectionOptions {
 };
 
 // Gives each detection the depth of its box in 'depth_m' (CV_32FC1 metres, aligned to the colour
-// image); detections without depth are dropped unless options.keep_without_depth.
-void MeasureDepths(const cv::Mat& depth_m, const RunDetectionOptions& options,
-                   std::vector<Detection>& detections);
+// image; BoxDepth, 'camera' telling the floor, may be null); detections without depth are
+// dropped unless options.keep_without_depth.
+void MeasureDepths(const cv::Mat& depth_m, const MountedCamera* camera,
+                   const RunDetectionOptions& options, std::vector<Detection>& detections);
 
 // Called after each frame with its colour image (RGB) and its detections; an error stops the
 // run and is returned.

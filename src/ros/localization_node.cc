@@ -256,12 +256,14 @@ void LocalizationNode::OnDetections(const std_msgs::StringConstPtr& message) {
 }
 
 void LocalizationNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
-  std::optional<RgbdDetections> frame = rgbd_.OnDepthImage(message);
+  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
+  std::optional<RgbdDetections> frame = rgbd_.OnDepthImage(message, camera ? &*camera : nullptr);
   if (frame) AddFrame(frame->stamp, std::move(frame->detections), frame->color);
 }
 
 void LocalizationNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
-  std::optional<RgbdDetections> frame = rgbd_.OnColorImage(message);
+  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
+  std::optional<RgbdDetections> frame = rgbd_.OnColorImage(message, camera ? &*camera : nullptr);
   if (frame) AddFrame(frame->stamp, std::move(frame->detections), frame->color);
 }
 

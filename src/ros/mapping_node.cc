@@ -245,11 +245,13 @@ void MappingNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
 }
 
 void MappingNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
-  AddDetectedFrame(rgbd_.OnDepthImage(message));
+  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
+  AddDetectedFrame(rgbd_.OnDepthImage(message, camera ? &*camera : nullptr));
 }
 
 void MappingNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
-  AddDetectedFrame(rgbd_.OnColorImage(message));
+  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
+  AddDetectedFrame(rgbd_.OnColorImage(message, camera ? &*camera : nullptr));
 }
 
 void MappingNode::AddDetectedFrame(std::optional<RgbdDetections> detected) {

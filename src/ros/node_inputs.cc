@@ -119,28 +119,29 @@ void RgbdDetector::Wait(std::deque<sensor_msgs::ImageConstPtr>* waiting,
   ROS_WARN_THROTTLE(5.0, "semchain_ros: a %s image found no partner with its stamp; dropped", what);
 }
 
-std::optional<RgbdDetections> RgbdDetector::OnColorImage(
-    const sensor_msgs::ImageConstPtr& message) {
+std::optional<RgbdDetections> RgbdDetector::OnColorImage(const sensor_msgs::ImageConstPtr& message,
+                                                         const MountedCamera* camera) {
   const sensor_msgs::ImageConstPtr depth = TakePartner(&depths_, message->header.stamp);
   if (!depth) {
     Wait(&colors_, message, "colour");
     return std::nullopt;
   }
-  return Detect(*message, *depth);
+  return Detect(*message, *depth, camera);
 }
 
-std::optional<RgbdDetections> RgbdDetector::OnDepthImage(
-    const sensor_msgs::ImageConstPtr& message) {
+std::optional<RgbdDetections> RgbdDetector::OnDepthImage(const sensor_msgs::ImageConstPtr& message,
+                                                         const MountedCamera* camera) {
   const sensor_msgs::ImageConstPtr color = TakePartner(&colors_, message->header.stamp);
   if (!color) {
     Wait(&depths_, message, "depth");
     return std::nullopt;
   }
-  return Detect(*color, *message);
+  return Detect(*color, *message, camera);
 }
 
 std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& message,
-                                                   const sensor_msgs::Image& depth_message) {
+                                                   const sensor_msgs::Image& depth_message,
+                                                   const MountedCamera* camera) {
   Result<cv::Mat> rgb = ColorFromImageMsg(message);
   if (!rgb.ok()) {
     ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
@@ -166,7 +167,7 @@ std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& mes
     ROS_WARN_THROTTLE(5.0, "semchain_ros: detector: %s", detections.status().message().c_str());
     return std::nullopt;
   }
-  detection::MeasureDepths(frame.depth_m, detection::RunDetectionOptions(), *detections);
+  detection::MeasureDepths(frame.depth_m, camera, detection::RunDetectionOptions(), *detections);
   frame.detections = std::move(*detections);
   frame.color = std::move(*rgb);
   return frame;

@@ -82,13 +82,17 @@ class RgbdDetector {
  public:
   explicit RgbdDetector(detection::YoloDetector* detector) : detector_(detector) {}
   // The detections of the frame this image completes; nullopt while its partner has not come,
-  // or with a throttled warning when the pair cannot be used.
-  std::optional<RgbdDetections> OnColorImage(const sensor_msgs::ImageConstPtr& message);
-  std::optional<RgbdDetections> OnDepthImage(const sensor_msgs::ImageConstPtr& message);
+  // or with a throttled warning when the pair cannot be used. 'camera' (null while unknown)
+  // tells the depth image's floor pixels from the objects'.
+  std::optional<RgbdDetections> OnColorImage(const sensor_msgs::ImageConstPtr& message,
+                                             const MountedCamera* camera);
+  std::optional<RgbdDetections> OnDepthImage(const sensor_msgs::ImageConstPtr& message,
+                                             const MountedCamera* camera);
 
  private:
   std::optional<RgbdDetections> Detect(const sensor_msgs::Image& color,
-                                       const sensor_msgs::Image& depth);
+                                       const sensor_msgs::Image& depth,
+                                       const MountedCamera* camera);
   // Takes the image of 'waiting' with 'stamp''s moment (and drops the older ones, which can no
   // longer be paired); null when none.
   static sensor_msgs::ImageConstPtr TakePartner(std::deque<sensor_msgs::ImageConstPtr>* waiting,
