@@ -140,15 +140,16 @@ std::string MarkdownTable(const nlohmann::json& results) {
   return md.str();
 }
 
-int RunBenchLocalize(const BenchLocalizeArgs& args) {
+// The protocol's set-up with the options given over it, checked for every method.
+Result<eval::LogTrialOptions> BuildTrialOptions(const BenchLocalizeArgs& args) {
   eval::LogTrialOptions options;
   options.trials = args.trials;
   options.seed = static_cast<std::uint64_t>(args.seed);
   if (args.filter_seed) options.filter_seed = static_cast<std::uint64_t>(*args.filter_seed);
   if (args.protocol == "nav2") {
     if (args.window_s || args.alpha) {
-      return ReportError(Status::Error(
-          "bench localize: --window and --alpha are fixed by --protocol nav2 (60 s, 0.2)"));
+      return Status::Error(
+          "bench localize: --window and --alpha are fixed by --protocol nav2 (60 s, 0.2)");
     }
     options = eval::Nav2Protocol(options);
   } else if (args.protocol == "semchain") {
@@ -158,79 +159,124 @@ int RunBenchLocalize(const BenchLocalizeArgs& args) {
           *args.alpha;
     }
   } else {
-    return ReportError(Status::Error("bench localize: --protocol must be semchain or nav2, not '" +
-                                     args.protocol + "'"));
+    return Status::Error("bench localize: --protocol must be semchain or nav2, not '" +
+                         args.protocol + "'");
   }
   // How AMCL resamples is the filter's own choice, not a parameter the peer's set-up fixes.
   options.amcl.systematic_resampling = args.resampling == "systematic";
   std::string error;
   for (const std::string& method : args.methods) {
     options.method = method;
-    if (!options.Validate(&error)) return ReportError(Status::Error("bench localize: " + error));
+    if (!options.Validate(&error)) return Status::Error("bench localize: " + error);
   }
-  const Result<carmen::Log> log = carmen::ReadLog(args.log);
-  if (!log.ok()) return ReportError(log.status());
-  const Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, args.log);
-  if (!scans.ok()) return ReportError(scans.status());
-  // nav2 protocol: the methods see odometry rebuilt from the corrected poses with seeded noise;
-  // the map and the truth stay the corrected poses.
-  std::vector<StampedScan> perturbed_scans;
+  return options;
+}
+
+// The corrected scans (the map and the truth) and, under the nav2 protocol, the scans the
+// methods see instead: odometry rebuilt from the corrected poses with seeded noise.
+struct TrialScans {
+  std::vector<StampedScan> corrected;
+  std::vector<StampedScan> perturbed;
   std::vector<Pose2> truth;
+};
+
+Result<TrialScans> ReadTrialScans(const BenchLocalizeArgs& args,
+                                  const eval::LogTrialOptions& options) {
+  const Result<carmen::Log> log = carmen::ReadLog(args.log);
+  if (!log.ok()) return log.status();
+  Result<std::vector<StampedScan>> scans = mapping::ScansFromLog(*log, args.log);
+  if (!scans.ok()) return scans.status();
+  TrialScans out;
+  out.corrected = std::move(*scans);
   if (options.perturb_odometry) {
     const mapping::PerturbedLog perturbed = mapping::PerturbOdometry(*log, options.odometry_noise);
     Result<std::vector<StampedScan>> noisy = mapping::ScansFromLog(perturbed.log, args.log);
-    if (!noisy.ok()) return ReportError(noisy.status());
-    perturbed_scans = std::move(*noisy);
-    for (const StampedScan& s : *scans) truth.push_back(s.odometry);
+    if (!noisy.ok()) return noisy.status();
+    out.perturbed = std::move(*noisy);
+    for (const StampedScan& s : out.corrected) out.truth.push_back(s.odometry);
   }
-  const std::vector<StampedScan>& trial_scans = options.perturb_odometry ? perturbed_scans : *scans;
-  spdlog::info("bench localize: building the map from {} corrected poses", scans->size());
-  const mapping::MapImage map =
-      eval::MapFromCorrectedPoses(*scans, options.map_resolution, options.map_max_range_meters);
+  return out;
+}
+
+Result<mapping::MapImage> BuildMap(const BenchLocalizeArgs& args,
+                                   const eval::LogTrialOptions& options,
+                                   const std::vector<StampedScan>& scans) {
+  spdlog::info("bench localize: building the map from {} corrected poses", scans.size());
+  mapping::MapImage map =
+      eval::MapFromCorrectedPoses(scans, options.map_resolution, options.map_max_range_meters);
   const localization::LocalizationMap check(map, options.amcl.laser_likelihood_max_dist);
   if (check.free_cells().empty()) {
-    return ReportError(Status::Error(args.log + ": the map built from the log has no free cells"));
+    return Status::Error(args.log + ": the map built from the log has no free cells");
   }
-  const Status writable = EnsureWritableDirectory(args.out);
-  if (!writable.ok()) return ReportError(writable);
-  const std::filesystem::path out(args.out);
+  return map;
+}
 
-  const Status map_written = mapping::WriteMap(out / "map.yaml", map);
-  if (!map_written.ok()) return ReportError(map_written);
-  const bool timed = eval::TimestampsUsable(*scans);
+// Whether the trials can be timed; without timestamps they span a number of scans.
+bool CheckTimestamps(const BenchLocalizeArgs& args, const eval::LogTrialOptions& options,
+                     const std::vector<StampedScan>& scans) {
+  const bool timed = eval::TimestampsUsable(scans);
   if (!timed) {
     spdlog::warn("bench localize: {} has no usable timestamps; trials span {} scans, no times",
                  args.log, options.window_scans);
   }
-  nlohmann::json results = {
-      {"log", args.log},
-      {"trials", args.trials},
-      {"seed", args.seed},
-      {"filter_seed",
-       args.filter_seed ? nlohmann::json(*args.filter_seed) : nlohmann::json(nullptr)},
-      {"protocol", args.protocol},
-      {"timestamps_usable", timed},
-      {"alpha", options.amcl.alpha1},
-      {"max_particles", options.amcl.max_particles},
-      {"resampling", args.resampling},
-      {"window", timed ? Fixed(options.window_seconds, 0) + " s"
-                       : std::to_string(options.window_scans) + " scans"},
-      {"map", {{"width", map.width}, {"height", map.height}, {"resolution", map.resolution}}},
-      {"methods", nlohmann::json::object()},
-      {"runs", nlohmann::json::object()}};
+  return timed;
+}
+
+// The set-up of the benchmark; RunMethods fills in "methods" and "runs".
+nlohmann::json ResultsJson(const BenchLocalizeArgs& args, const eval::LogTrialOptions& options,
+                           const mapping::MapImage& map, bool timed) {
+  return {{"log", args.log},
+          {"trials", args.trials},
+          {"seed", args.seed},
+          {"filter_seed",
+           args.filter_seed ? nlohmann::json(*args.filter_seed) : nlohmann::json(nullptr)},
+          {"protocol", args.protocol},
+          {"timestamps_usable", timed},
+          {"alpha", options.amcl.alpha1},
+          {"max_particles", options.amcl.max_particles},
+          {"resampling", args.resampling},
+          {"window", timed ? Fixed(options.window_seconds, 0) + " s"
+                           : std::to_string(options.window_scans) + " scans"},
+          {"map", {{"width", map.width}, {"height", map.height}, {"resolution", map.resolution}}},
+          {"methods", nlohmann::json::object()},
+          {"runs", nlohmann::json::object()}};
+}
+
+void RunMethods(const BenchLocalizeArgs& args, eval::LogTrialOptions options,
+                const TrialScans& scans, const mapping::MapImage& map, nlohmann::json* results) {
+  const std::vector<StampedScan>& trial_scans =
+      options.perturb_odometry ? scans.perturbed : scans.corrected;
   for (const std::string& method : args.methods) {
     options.method = method;
     ProgressBar bar("bench localize " + method, static_cast<std::size_t>(args.trials));
     const std::vector<eval::LogTrial> trials = eval::RunLogTrials(
         trial_scans, map, options, [&bar](int done) { bar.Update(static_cast<std::size_t>(done)); },
-        truth);
+        scans.truth);
     bar.Finish();
     nlohmann::json runs = nlohmann::json::array();
     for (const eval::LogTrial& t : trials) runs.push_back(TrialJson(t));
-    results["runs"][method] = runs;
-    results["methods"][method] = SummaryJson(eval::Summarize(trials));
-    spdlog::info("bench localize: {} {}", method, results["methods"][method].dump());
+    (*results)["runs"][method] = runs;
+    (*results)["methods"][method] = SummaryJson(eval::Summarize(trials));
+    spdlog::info("bench localize: {} {}", method, (*results)["methods"][method].dump());
   }
+}
+
+int RunBenchLocalize(const BenchLocalizeArgs& args) {
+  const Result<eval::LogTrialOptions> options = BuildTrialOptions(args);
+  if (!options.ok()) return ReportError(options.status());
+  const Result<TrialScans> scans = ReadTrialScans(args, *options);
+  if (!scans.ok()) return ReportError(scans.status());
+  const Result<mapping::MapImage> map = BuildMap(args, *options, scans->corrected);
+  if (!map.ok()) return ReportError(map.status());
+  const Status writable = EnsureWritableDirectory(args.out);
+  if (!writable.ok()) return ReportError(writable);
+  const std::filesystem::path out(args.out);
+
+  const Status map_written = mapping::WriteMap(out / "map.yaml", *map);
+  if (!map_written.ok()) return ReportError(map_written);
+  const bool timed = CheckTimestamps(args, *options, scans->corrected);
+  nlohmann::json results = ResultsJson(args, *options, *map, timed);
+  RunMethods(args, *options, *scans, *map, &results);
   const Status json = WriteFileAtomically(out / "results.json", results.dump(2) + "\n");
   if (!json.ok()) return ReportError(json);
   const Status md = WriteFileAtomically(out / "results.md", MarkdownTable(results));

@@ -151,9 +151,10 @@ nlohmann::json AmclJson(const localization::AmclOptions& a) {
           {"update_min_a", a.update_min_a}};
 }
 
-Status RunBenchTrack(const BenchTrackArgs& args) {
+Result<std::vector<localization::LocalizationMethod>> ParseMethods(
+    const std::vector<std::string>& names) {
   std::vector<localization::LocalizationMethod> methods;
-  for (const std::string& name : args.methods) {
+  for (const std::string& name : names) {
     const auto method = localization::ParseLocalizationMethod(name);
     if (!method) {
       return Status::Error("bench track: --methods: unknown method '" + name + "' (" +
@@ -161,17 +162,98 @@ Status RunBenchTrack(const BenchTrackArgs& args) {
     }
     methods.push_back(*method);
   }
-  const Result<localization::AmclOptions> amcl = TrackerOptions(args);
-  if (!amcl.ok()) return amcl.status();
-  SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(args.out));
+  return methods;
+}
+
+Result<std::vector<StampedScan>> ReadScans(const BenchTrackArgs& args) {
   const Result<fs::path> log_path = LogPath(args);
   if (!log_path.ok()) return log_path.status();
   const Result<carmen::Log> log = carmen::ReadLog(*log_path);
   if (!log.ok()) return log.status();
   // The odometry SLAM sees (`semchain slam` repairs reversed steps the same way).
   mapping::ReversedOdometryRepair repair;
-  const Result<std::vector<StampedScan>> scans =
-      mapping::ScansFromLog(*log, log_path->string(), &repair);
+  return mapping::ScansFromLog(*log, log_path->string(), &repair);
+}
+
+Status SetScanTracking(const BenchTrackArgs& args, eval::TrackOptions* track_options) {
+  track_options->localizer.seed = static_cast<std::uint64_t>(args.seed);
+  localization::ScanTrackingOptions& scan_tracking = track_options->localizer.scan_tracking;
+  scan_tracking.enabled = !args.no_scan_tracking;
+  if (args.min_score) scan_tracking.min_score = *args.min_score;
+  if (args.confident_score) scan_tracking.confident_score = *args.confident_score;
+  if (args.translation_weight) scan_tracking.translation_weight = *args.translation_weight;
+  if (args.rotation_weight) scan_tracking.rotation_weight = *args.rotation_weight;
+  if (args.search_margin) scan_tracking.search_margin_ratio = *args.search_margin;
+  std::string error;
+  if (!scan_tracking.Validate(&error)) return Status::Error("bench track: " + error);
+  return Status::Ok();
+}
+
+// The set-up of the benchmark; TrackMethods fills in "methods".
+nlohmann::json ResultsJson(const BenchTrackArgs& args, std::size_t scans,
+                           const MapAndReference& built, const localization::AmclOptions& amcl,
+                           const std::vector<eval::ReferenceCheck>& checks,
+                           const TrackTarget& target) {
+  return {{"source", args.bag.empty() ? args.log : args.bag},
+          {"scans", scans},
+          {"map", built.info},
+          {"amcl", AmclJson(amcl)},
+          {"seed", args.seed},
+          {"scan_tracking", !args.no_scan_tracking},
+          {"target",
+           {{"median_m", target.median_m},
+            {"median_deg", target.median_deg},
+            {"max_m", target.max_m},
+            {"max_deg", target.max_deg}}},
+          {"reference", ReferenceJson(checks)},
+          {"methods", nlohmann::json::object()}};
+}
+
+// Each method over every scan: its summary into results["methods"], its errors drawn into
+// DIR/error_<method>.png.
+Result<std::vector<MethodTrack>> TrackMethods(
+    const BenchTrackArgs& args, const std::vector<localization::LocalizationMethod>& methods,
+    const localization::LocalizerMap& map, const std::vector<StampedScan>& scans,
+    const std::vector<Pose2>& reference, const eval::TrackOptions& track_options,
+    const std::vector<eval::ReferenceCheck>& checks, const TrackTarget& target,
+    nlohmann::json* results) {
+  std::vector<MethodTrack> tracks;
+  for (const localization::LocalizationMethod method : methods) {
+    MethodTrack t;
+    t.method = localization::LocalizationMethodName(method);
+    t.scans = eval::TrackScans(map, method, scans, reference, track_options);
+    t.summary = eval::SummarizeTrack(t.scans);
+    nlohmann::json& summary = (*results)["methods"][t.method];
+    summary = SummaryJson(t.summary, target);
+    summary["over_target"] = OverTargetJson(t.scans, checks, target);
+    spdlog::info("bench track: {} {}", t.method, summary.dump());
+    SEMCHAIN_RETURN_IF_ERROR(WriteTrackPng(
+        "bench track " + t.method + ": " + (*results)["source"].get<std::string>(), t.scans, checks,
+        target.median_m, target.median_deg, fs::path(args.out) / ("error_" + t.method + ".png")));
+    tracks.push_back(std::move(t));
+  }
+  return tracks;
+}
+
+Status WriteResults(const fs::path& out, const std::vector<StampedScan>& scans,
+                    const std::vector<Pose2>& reference,
+                    const std::vector<eval::ReferenceCheck>& checks,
+                    const std::vector<MethodTrack>& tracks, const nlohmann::json& results) {
+  std::vector<double> stamps;
+  for (const StampedScan& s : scans) stamps.push_back(s.scan.timestamp);
+  SEMCHAIN_RETURN_IF_ERROR(
+      WriteFileAtomically(out / "trace.csv", TraceCsv(stamps, reference, checks, tracks)));
+  SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(out / "results.json", results.dump(2) + "\n"));
+  return WriteFileAtomically(out / "results.md", TrackMarkdown(results));
+}
+
+Status RunBenchTrack(const BenchTrackArgs& args) {
+  const Result<std::vector<localization::LocalizationMethod>> methods = ParseMethods(args.methods);
+  if (!methods.ok()) return methods.status();
+  const Result<localization::AmclOptions> amcl = TrackerOptions(args);
+  if (!amcl.ok()) return amcl.status();
+  SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(args.out));
+  const Result<std::vector<StampedScan>> scans = ReadScans(args);
   if (!scans.ok()) return scans.status();
   const Result<MapAndReference> built = BuildMap(args, *scans);
   if (!built.ok()) return built.status();
@@ -183,51 +265,13 @@ Status RunBenchTrack(const BenchTrackArgs& args) {
   const std::vector<eval::ReferenceCheck> checks =
       eval::CheckReference(map.matcher, *scans, built->reference,
                            track_options.localizer.scan_tracking.point_spacing_meters);
+  SEMCHAIN_RETURN_IF_ERROR(SetScanTracking(args, &track_options));
   const TrackTarget target;
-  track_options.localizer.seed = static_cast<std::uint64_t>(args.seed);
-  localization::ScanTrackingOptions& scan_tracking = track_options.localizer.scan_tracking;
-  scan_tracking.enabled = !args.no_scan_tracking;
-  if (args.min_score) scan_tracking.min_score = *args.min_score;
-  if (args.confident_score) scan_tracking.confident_score = *args.confident_score;
-  if (args.translation_weight) scan_tracking.translation_weight = *args.translation_weight;
-  if (args.rotation_weight) scan_tracking.rotation_weight = *args.rotation_weight;
-  if (args.search_margin) scan_tracking.search_margin_ratio = *args.search_margin;
-  std::string error;
-  if (!scan_tracking.Validate(&error)) return Status::Error("bench track: " + error);
-  nlohmann::json results = {{"source", args.bag.empty() ? args.log : args.bag},
-                            {"scans", scans->size()},
-                            {"map", built->info},
-                            {"amcl", AmclJson(*amcl)},
-                            {"seed", args.seed},
-                            {"scan_tracking", !args.no_scan_tracking},
-                            {"target",
-                             {{"median_m", target.median_m},
-                              {"median_deg", target.median_deg},
-                              {"max_m", target.max_m},
-                              {"max_deg", target.max_deg}}},
-                            {"reference", ReferenceJson(checks)},
-                            {"methods", nlohmann::json::object()}};
-  std::vector<MethodTrack> tracks;
-  for (const localization::LocalizationMethod method : methods) {
-    MethodTrack t;
-    t.method = localization::LocalizationMethodName(method);
-    t.scans = eval::TrackScans(map, method, *scans, built->reference, track_options);
-    t.summary = eval::SummarizeTrack(t.scans);
-    results["methods"][t.method] = SummaryJson(t.summary, target);
-    results["methods"][t.method]["over_target"] = OverTargetJson(t.scans, checks, target);
-    spdlog::info("bench track: {} {}", t.method, results["methods"][t.method].dump());
-    SEMCHAIN_RETURN_IF_ERROR(WriteTrackPng(
-        "bench track " + t.method + ": " + results["source"].get<std::string>(), t.scans, checks,
-        target.median_m, target.median_deg, fs::path(args.out) / ("error_" + t.method + ".png")));
-    tracks.push_back(std::move(t));
-  }
-  std::vector<double> stamps;
-  for (const StampedScan& s : *scans) stamps.push_back(s.scan.timestamp);
-  const fs::path out(args.out);
-  SEMCHAIN_RETURN_IF_ERROR(
-      WriteFileAtomically(out / "trace.csv", TraceCsv(stamps, built->reference, checks, tracks)));
-  SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(out / "results.json", results.dump(2) + "\n"));
-  return WriteFileAtomically(out / "results.md", TrackMarkdown(results));
+  nlohmann::json results = ResultsJson(args, scans->size(), *built, *amcl, checks, target);
+  const Result<std::vector<MethodTrack>> tracks = TrackMethods(
+      args, *methods, map, *scans, built->reference, track_options, checks, target, &results);
+  if (!tracks.ok()) return tracks.status();
+  return WriteResults(fs::path(args.out), *scans, built->reference, checks, *tracks, results);
 }
 
 }  // namespace

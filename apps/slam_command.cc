@@ -16,6 +16,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <vector>
 
 #include "apps/command.h"
 #include "apps/shipped_file.h"
@@ -140,15 +141,21 @@ Status WriteOutputs(const std::filesystem::path& out, const mapping::SlamResult&
   });
 }
 
-int RunSlamCommand(const SlamArgs& args) {
-  const Result<mapping::SlamOptions> options = BuildOptions(args);
-  if (!options.ok()) return ReportError(options.status());
+// Everything the SLAM run needs, read and checked before the (long) run starts.
+struct SlamInputs {
+  mapping::SlamOptions options;
+  std::vector<StampedScan> scans;
+  std::optional<mapping::DepthRun> depth_run;
+  std::unique_ptr<SlamSemantic> semantic;
+};
+
+Result<std::vector<StampedScan>> ReadScans(const SlamArgs& args) {
   const Result<carmen::Log> log = carmen::ReadLog(args.log);
-  if (!log.ok()) return ReportError(log.status());
+  if (!log.ok()) return log.status();
   mapping::ReversedOdometryRepair repair;
   Result<std::vector<StampedScan>> scans =
       mapping::ScansFromLog(*log, args.log, args.raw_odometry ? nullptr : &repair);
-  if (!scans.ok()) return ReportError(scans.status());
+  if (!scans.ok()) return scans.status();
   if (repair.steps > 0) {
     spdlog::warn(
         "slam: {}: the odometry moved forward while its velocity was negative in {} steps "
@@ -158,84 +165,123 @@ int RunSlamCommand(const SlamArgs& args) {
   if (args.max_scans && static_cast<std::size_t>(*args.max_scans) < scans->size()) {
     scans->resize(static_cast<std::size_t>(*args.max_scans));
   }
+  return scans;
+}
+
+Result<SlamInputs> ReadInputs(const SlamArgs& args) {
+  SlamInputs inputs;
+  Result<mapping::SlamOptions> options = BuildOptions(args);
+  if (!options.ok()) return options.status();
+  inputs.options = std::move(*options);
+  Result<std::vector<StampedScan>> scans = ReadScans(args);
+  if (!scans.ok()) return scans.status();
+  inputs.scans = std::move(*scans);
   // The run's camera and frame list are checked before the (long) SLAM run.
-  std::optional<mapping::DepthRun> depth_run;
   if (!args.depth_run.empty()) {
     Result<mapping::DepthRun> loaded = mapping::LoadDepthRun(args.depth_run);
-    if (!loaded.ok()) return ReportError(loaded.status());
-    depth_run = std::move(*loaded);
+    if (!loaded.ok()) return loaded.status();
+    inputs.depth_run = std::move(*loaded);
   }
-  std::unique_ptr<SlamSemantic> semantic;
   if (!args.semantic.run.empty()) {
     Result<std::unique_ptr<SlamSemantic>> opened =
-        SlamSemantic::Open(args.semantic, options->rbpf.grid.resolution_meters);
-    if (!opened.ok()) return ReportError(opened.status());
-    semantic = std::move(*opened);
+        SlamSemantic::Open(args.semantic, inputs.options.rbpf.grid.resolution_meters);
+    if (!opened.ok()) return opened.status();
+    inputs.semantic = std::move(*opened);
   }
-  const Status writable = EnsureWritableDirectory(args.out);
-  if (!writable.ok()) return ReportError(writable);
-  spdlog::info("slam: {} scans, {} particles, annealing {}, genetic resampling {}", scans->size(),
-               options->rbpf.particles, options->rbpf.annealing.enabled ? "on" : "off",
-               options->rbpf.genetic.enabled ? "on" : "off");
-  ProgressBar bar("slam", 2 * scans->size());
+  SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(args.out));
+  return inputs;
+}
+
+struct SlamRun {
+  mapping::SlamResult result;
+  double seconds = 0.0;
+};
+
+// The filter over the scans; the semantic map, when asked for, grows with it.
+SlamRun RunFilter(SlamInputs& inputs) {
+  const mapping::SlamOptions& options = inputs.options;
+  spdlog::info("slam: {} scans, {} particles, annealing {}, genetic resampling {}",
+               inputs.scans.size(), options.rbpf.particles,
+               options.rbpf.annealing.enabled ? "on" : "off",
+               options.rbpf.genetic.enabled ? "on" : "off");
+  ProgressBar bar("slam", 2 * inputs.scans.size());
   const auto start = std::chrono::steady_clock::now();
   std::function<void(const mapping::SlamStep&)> observe;
-  if (semantic) {
-    semantic->StartPreparing();
-    observe = [&semantic](const mapping::SlamStep& step) { semantic->Observe(step); };
+  if (inputs.semantic) {
+    inputs.semantic->StartPreparing();
+    observe = [&inputs](const mapping::SlamStep& step) { inputs.semantic->Observe(step); };
   }
   mapping::SlamResult result = mapping::RunSlam(
-      *scans, *options, [&bar](std::size_t done) { bar.Update(done); }, observe);
+      inputs.scans, options, [&bar](std::size_t done) { bar.Update(done); }, observe);
   bar.Finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return {std::move(result), seconds};
+}
+
+Result<mapping::DepthFusionResult> FuseDepth(const mapping::DepthRun& depth_run,
+                                             const mapping::SlamResult& result) {
+  ProgressBar depth_bar("depth fusion", depth_run.frames.size());
+  Result<mapping::DepthFusionResult> fused =
+      mapping::FuseDepthRun(depth_run, result.map, result.trajectory, {},
+                            [&depth_bar](std::size_t done) { depth_bar.Update(done); });
+  depth_bar.Finish();
+  if (!fused.ok()) return fused.status();
+  spdlog::info("slam: fused {} depth frames into the map", fused->frames);
+  return fused;
+}
+
+void LogStatistics(const SlamInputs& inputs, const SlamRun& run) {
+  const mapping::SlamResult& result = run.result;
+  spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",
+               result.statistics.processed, result.localized, inputs.scans.size(), run.seconds);
+  if (!inputs.options.pose_graph) return;
+  const mapping::LoopClosureStatistics& l = result.loop_closure;
+  spdlog::info(
+      "slam: pose graph: {} nodes, {} submaps, loop closures {} found, {} accepted, {} "
+      "rejected by the other closures, {} not added (off the motion's prediction); search "
+      "{:.1f} s (submaps built for it: {:.0f} MB at most), optimizer {:.2f} s",
+      l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.gated, l.search_seconds,
+      l.built_submaps_peak_megabytes, l.optimizer_seconds);
+  if (inputs.options.loop_closure.online) {
+    spdlog::info("slam: pose graph online: the particles followed it {} times", l.follows);
+  }
+}
+
+int RunSlamCommand(const SlamArgs& args) {
+  Result<SlamInputs> inputs = ReadInputs(args);
+  if (!inputs.ok()) return ReportError(inputs.status());
+  SlamRun run = RunFilter(*inputs);
   std::optional<mapping::DepthFusionResult> depth;
-  if (depth_run) {
-    ProgressBar depth_bar("depth fusion", depth_run->frames.size());
-    Result<mapping::DepthFusionResult> fused =
-        mapping::FuseDepthRun(*depth_run, result.map, result.trajectory, {},
-                              [&depth_bar](std::size_t done) { depth_bar.Update(done); });
-    depth_bar.Finish();
+  if (inputs->depth_run) {
+    Result<mapping::DepthFusionResult> fused = FuseDepth(*inputs->depth_run, run.result);
     if (!fused.ok()) return ReportError(fused.status());
-    spdlog::info("slam: fused {} depth frames into the map", fused->frames);
     depth = std::move(*fused);
   }
   // Everything is computed before anything is written; the folder is written atomically.
   std::optional<semantic::LiveSemanticResult> live;
-  const mapping::MapImage map = mapping::GridToMapImage(depth ? depth->fused : result.map);
+  const mapping::MapImage map = mapping::GridToMapImage(depth ? depth->fused : run.result.map);
   // Without depth fusion the grid is not written again; a campus grid takes hundreds of MB,
   // more than the images the folder is written from.
-  if (!depth) result.map = mapping::OccupancyGrid();
-  if (semantic) {
-    Result<semantic::LiveSemanticResult> finished = semantic->Finish(result.trajectory, map);
+  if (!depth) run.result.map = mapping::OccupancyGrid();
+  std::optional<semantic::KeyframeDatabase> keyframes;
+  if (inputs->semantic) {
+    Result<semantic::LiveSemanticResult> finished =
+        inputs->semantic->Finish(run.result.trajectory, map);
     if (!finished.ok()) return ReportError(finished.status());
     live = std::move(*finished);
+    keyframes = inputs->semantic->Keyframes(*live);
   }
-  std::optional<semantic::KeyframeDatabase> keyframes;
-  if (live) keyframes = semantic->Keyframes(*live);
-  const Status written =
-      WriteOutputs(args.out, result, depth, StatisticsJson(result, *options, seconds), map,
-                   semantic.get(), live, keyframes);
+  const Status written = WriteOutputs(args.out, run.result, depth,
+                                      StatisticsJson(run.result, inputs->options, run.seconds), map,
+                                      inputs->semantic.get(), live, keyframes);
   if (!written.ok()) return ReportError(written);
   if (live) {
     std::printf("%s\nwrote %s\n",
                 SemanticSummary(live->mapping, keyframes->keyframes.size()).c_str(),
                 (std::filesystem::path(args.out) / "semantic.json").string().c_str());
   }
-  spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",
-               result.statistics.processed, result.localized, scans->size(), seconds);
-  if (options->pose_graph) {
-    const mapping::LoopClosureStatistics& l = result.loop_closure;
-    spdlog::info(
-        "slam: pose graph: {} nodes, {} submaps, loop closures {} found, {} accepted, {} "
-        "rejected by the other closures, {} not added (off the motion's prediction); search "
-        "{:.1f} s (submaps built for it: {:.0f} MB at most), optimizer {:.2f} s",
-        l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.gated, l.search_seconds,
-        l.built_submaps_peak_megabytes, l.optimizer_seconds);
-    if (options->loop_closure.online) {
-      spdlog::info("slam: pose graph online: the particles followed it {} times", l.follows);
-    }
-  }
+  LogStatistics(*inputs, run);
   return 0;
 }
 
