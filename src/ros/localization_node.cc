@@ -69,7 +69,7 @@ LocalizationNode::LocalizationNode(::ros::NodeHandle nh, ::ros::NodeHandle priva
                  parameters_.localizer),
       tf_listener_(tf_buffer_),
       camera_(parameters_.camera_max_range),
-      rgbd_(detector_.get()) {}
+      rgbd_(detector_.get(), [this] { return camera_.Camera(tf_buffer_, parameters_.frames); }) {}
 
 LocalizationNode::~LocalizationNode() {
   if (detector_thread_) detector_thread_->Stop();
@@ -256,14 +256,12 @@ void LocalizationNode::OnDetections(const std_msgs::StringConstPtr& message) {
 }
 
 void LocalizationNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
-  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
-  std::optional<RgbdDetections> frame = rgbd_.OnDepthImage(message, camera ? &*camera : nullptr);
+  std::optional<RgbdDetections> frame = rgbd_.OnDepthImage(message);
   if (frame) AddFrame(frame->stamp, std::move(frame->detections), frame->color);
 }
 
 void LocalizationNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
-  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
-  std::optional<RgbdDetections> frame = rgbd_.OnColorImage(message, camera ? &*camera : nullptr);
+  std::optional<RgbdDetections> frame = rgbd_.OnColorImage(message);
   if (frame) AddFrame(frame->stamp, std::move(frame->detections), frame->color);
 }
 

@@ -53,7 +53,7 @@ MappingNode::MappingNode(::ros::NodeHandle nh, MappingNodeParameters parameters,
       tf_buffer_(::ros::Duration(30.0)),
       tf_listener_(tf_buffer_),
       camera_(parameters_.camera_max_range),
-      rgbd_(detector_.get()) {}
+      rgbd_(detector_.get(), [this] { return camera_.Camera(tf_buffer_, parameters_.frames); }) {}
 
 MappingNode::~MappingNode() { Shutdown(); }
 
@@ -245,13 +245,11 @@ void MappingNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
 }
 
 void MappingNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
-  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
-  AddDetectedFrame(rgbd_.OnDepthImage(message, camera ? &*camera : nullptr));
+  AddDetectedFrame(rgbd_.OnDepthImage(message));
 }
 
 void MappingNode::OnColorImage(const sensor_msgs::ImageConstPtr& message) {
-  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
-  AddDetectedFrame(rgbd_.OnColorImage(message, camera ? &*camera : nullptr));
+  AddDetectedFrame(rgbd_.OnColorImage(message));
 }
 
 void MappingNode::AddDetectedFrame(std::optional<RgbdDetections> detected) {

@@ -119,29 +119,28 @@ void RgbdDetector::Wait(std::deque<sensor_msgs::ImageConstPtr>* waiting,
   ROS_WARN_THROTTLE(5.0, "semchain_ros: a %s image found no partner with its stamp; dropped", what);
 }
 
-std::optional<RgbdDetections> RgbdDetector::OnColorImage(const sensor_msgs::ImageConstPtr& message,
-                                                         const MountedCamera* camera) {
+std::optional<RgbdDetections> RgbdDetector::OnColorImage(
+    const sensor_msgs::ImageConstPtr& message) {
   const sensor_msgs::ImageConstPtr depth = TakePartner(&depths_, message->header.stamp);
   if (!depth) {
     Wait(&colors_, message, "colour");
     return std::nullopt;
   }
-  return Detect(*message, *depth, camera);
+  return Detect(*message, *depth);
 }
 
-std::optional<RgbdDetections> RgbdDetector::OnDepthImage(const sensor_msgs::ImageConstPtr& message,
-                                                         const MountedCamera* camera) {
+std::optional<RgbdDetections> RgbdDetector::OnDepthImage(
+    const sensor_msgs::ImageConstPtr& message) {
   const sensor_msgs::ImageConstPtr color = TakePartner(&colors_, message->header.stamp);
   if (!color) {
     Wait(&depths_, message, "depth");
     return std::nullopt;
   }
-  return Detect(*color, *message, camera);
+  return Detect(*color, *message);
 }
 
 std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& message,
-                                                   const sensor_msgs::Image& depth_message,
-                                                   const MountedCamera* camera) {
+                                                   const sensor_msgs::Image& depth_message) {
   Result<cv::Mat> rgb = ColorFromImageMsg(message);
   if (!rgb.ok()) {
     ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
@@ -167,7 +166,9 @@ std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& mes
     ROS_WARN_THROTTLE(5.0, "semchain_ros: detector: %s", detections.status().message().c_str());
     return std::nullopt;
   }
-  detection::MeasureDepths(frame.depth_m, camera, detection::RunDetectionOptions(), *detections);
+  const std::optional<MountedCamera> camera = camera_ ? camera_() : std::nullopt;
+  detection::MeasureDepths(frame.depth_m, camera ? &*camera : nullptr,
+                           detection::RunDetectionOptions(), *detections);
   frame.detections = std::move(*detections);
   frame.color = std::move(*rgb);
   return frame;

@@ -8,6 +8,7 @@
 #include <tf2_ros/buffer.h>
 
 #include <deque>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -80,19 +81,20 @@ struct RgbdDetections {
 // returns its detections.
 class RgbdDetector {
  public:
-  explicit RgbdDetector(detection::YoloDetector* detector) : detector_(detector) {}
+  // The camera when it is known (camera_info and tf), asked once per completed pair: it tells
+  // the depth image's floor pixels from the objects'. Without one no pixel is floor.
+  using CameraSource = std::function<std::optional<MountedCamera>()>;
+
+  explicit RgbdDetector(detection::YoloDetector* detector, CameraSource camera = {})
+      : detector_(detector), camera_(std::move(camera)) {}
   // The detections of the frame this image completes; nullopt while its partner has not come,
-  // or with a throttled warning when the pair cannot be used. 'camera' (null while unknown)
-  // tells the depth image's floor pixels from the objects'.
-  std::optional<RgbdDetections> OnColorImage(const sensor_msgs::ImageConstPtr& message,
-                                             const MountedCamera* camera);
-  std::optional<RgbdDetections> OnDepthImage(const sensor_msgs::ImageConstPtr& message,
-                                             const MountedCamera* camera);
+  // or with a throttled warning when the pair cannot be used.
+  std::optional<RgbdDetections> OnColorImage(const sensor_msgs::ImageConstPtr& message);
+  std::optional<RgbdDetections> OnDepthImage(const sensor_msgs::ImageConstPtr& message);
 
  private:
   std::optional<RgbdDetections> Detect(const sensor_msgs::Image& color,
-                                       const sensor_msgs::Image& depth,
-                                       const MountedCamera* camera);
+                                       const sensor_msgs::Image& depth);
   // Takes the image of 'waiting' with 'stamp''s moment (and drops the older ones, which can no
   // longer be paired); null when none.
   static sensor_msgs::ImageConstPtr TakePartner(std::deque<sensor_msgs::ImageConstPtr>* waiting,
@@ -101,6 +103,7 @@ class RgbdDetector {
                    const sensor_msgs::ImageConstPtr& message, const char* what);
 
   detection::YoloDetector* detector_;
+  CameraSource camera_;
   std::deque<sensor_msgs::ImageConstPtr> colors_;  // waiting for their depth image
   std::deque<sensor_msgs::ImageConstPtr> depths_;  // waiting for their colour image
 };

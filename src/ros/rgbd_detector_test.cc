@@ -47,8 +47,8 @@ class RgbdDetectorTest : public ::testing::Test {
 // completes the frame, and the frame is the colour image's.
 TEST_F(RgbdDetectorTest, PairsColourAndDepthInEitherOrder) {
   RgbdDetector rgbd(model_.get());
-  EXPECT_FALSE(rgbd.OnColorImage(Color(10.0, 7), nullptr));
-  const std::optional<RgbdDetections> colour_first = rgbd.OnDepthImage(Depth(10.0), nullptr);
+  EXPECT_FALSE(rgbd.OnColorImage(Color(10.0, 7)));
+  const std::optional<RgbdDetections> colour_first = rgbd.OnDepthImage(Depth(10.0));
   ASSERT_TRUE(colour_first);
   EXPECT_EQ(colour_first->frame, "camera/7");
   EXPECT_DOUBLE_EQ(colour_first->stamp, 10.0);
@@ -57,8 +57,8 @@ TEST_F(RgbdDetectorTest, PairsColourAndDepthInEitherOrder) {
     EXPECT_NEAR(detection.depth_m, 2.0, 1e-6);
   }
 
-  EXPECT_FALSE(rgbd.OnDepthImage(Depth(10.5), nullptr));
-  const std::optional<RgbdDetections> depth_first = rgbd.OnColorImage(Color(10.5, 8), nullptr);
+  EXPECT_FALSE(rgbd.OnDepthImage(Depth(10.5)));
+  const std::optional<RgbdDetections> depth_first = rgbd.OnColorImage(Color(10.5, 8));
   ASSERT_TRUE(depth_first);
   EXPECT_EQ(depth_first->frame, "camera/8");
   EXPECT_EQ(depth_first->detections.size(), SceneSquares().size());
@@ -66,11 +66,11 @@ TEST_F(RgbdDetectorTest, PairsColourAndDepthInEitherOrder) {
 
 TEST_F(RgbdDetectorTest, ImagesOfDifferentMomentsAreNotPaired) {
   RgbdDetector rgbd(model_.get());
-  EXPECT_FALSE(rgbd.OnColorImage(Color(10.0, 1), nullptr));
-  EXPECT_FALSE(rgbd.OnDepthImage(Depth(10.5), nullptr));  // half a second later: not this frame's
-  EXPECT_FALSE(rgbd.OnColorImage(Color(11.0, 2), nullptr));
+  EXPECT_FALSE(rgbd.OnColorImage(Color(10.0, 1)));
+  EXPECT_FALSE(rgbd.OnDepthImage(Depth(10.5)));  // half a second later: not this frame's
+  EXPECT_FALSE(rgbd.OnColorImage(Color(11.0, 2)));
   // The depth of 10.0 s never came; the next moment still pairs.
-  const std::optional<RgbdDetections> next = rgbd.OnDepthImage(Depth(11.0), nullptr);
+  const std::optional<RgbdDetections> next = rgbd.OnDepthImage(Depth(11.0));
   ASSERT_TRUE(next);
   EXPECT_EQ(next->frame, "camera/2");
 }
