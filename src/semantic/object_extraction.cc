@@ -93,12 +93,12 @@ std::vector<int> SplitRegion(const std::vector<Eigen::Vector2i>& cells,
   return std::vector<int>(labels.begin<int>(), labels.end<int>());
 }
 
-// Centres of the free cells within 'radius' of the centroid of 'points'.
-std::vector<Eigen::Vector2d> FreeCellsNear(const cv::Mat& free_space, const GridGeometry& geometry,
+// Centres of the cells of 'mask' within 'radius' of the centroid of 'points'.
+std::vector<Eigen::Vector2d> MaskCellsNear(const cv::Mat& mask, const GridGeometry& geometry,
                                            const std::vector<Eigen::Vector2d>& points,
                                            double radius) {
   std::vector<Eigen::Vector2d> cells;
-  if (free_space.empty() || points.empty()) return cells;
+  if (mask.empty() || points.empty()) return cells;
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& p : points) centroid += p;
   centroid /= static_cast<double>(points.size());
@@ -106,7 +106,7 @@ std::vector<Eigen::Vector2d> FreeCellsNear(const cv::Mat& free_space, const Grid
   const Eigen::Vector2i high = geometry.CellOf(centroid + Eigen::Vector2d::Constant(radius));
   for (int y = std::max(0, low.y()); y <= std::min(geometry.height - 1, high.y()); ++y) {
     for (int x = std::max(0, low.x()); x <= std::min(geometry.width - 1, high.x()); ++x) {
-      if (!free_space.at<std::uint8_t>(y, x)) continue;
+      if (!mask.at<std::uint8_t>(y, x)) continue;
       const Eigen::Vector2d center = geometry.CenterOf({x, y});
       if ((center - centroid).norm() <= radius) cells.push_back(center);
     }
@@ -161,9 +161,10 @@ int JoinBridgedRegions(const std::vector<const DetectionObservation*>& observati
 }
 
 // The class's shape fitted to the part's cells (their mean points, weighted by the frames
-// that hit them), completed behind the side it was seen from and kept off the free space.
+// that hit them), completed behind the side it was seen from (in front of it on a wall) and
+// kept off the free space.
 FittedShape FitPart(const SemanticGrid& grid, int c, const ObjectPart& part,
-                    const ClassShapePrior& prior, const cv::Mat& free_space) {
+                    const ClassShapePrior& prior, const LaserMapCells& laser_map) {
   std::vector<Eigen::Vector2d> points;
   std::vector<double> weights;
   Eigen::Vector2d view = Eigen::Vector2d::Zero();
@@ -173,9 +174,11 @@ FittedShape FitPart(const SemanticGrid& grid, int c, const ObjectPart& part,
     view += grid.ViewDirection(c, cell);
   }
   if (view.norm() > 1e-9) view.normalize();
-  const std::vector<Eigen::Vector2d> free_points =
-      FreeCellsNear(free_space, grid.geometry(), points, prior.Extent() + 0.2);
-  return FitShape(points, weights, view, prior, free_points);
+  const double radius = prior.Extent() + 0.2;
+  return FitShape(points, weights, view, prior,
+                  MaskCellsNear(laser_map.free, grid.geometry(), points, radius),
+                  MaskCellsNear(laser_map.occupied, grid.geometry(), points,
+                                0.5 * prior.Extent() + kFaceWallReach + 0.2));
 }
 
 // A class's evidence above the threshold and its regions: the evidence closed and opened,
@@ -323,7 +326,7 @@ SemanticObject ObjectOf(const FittedPart& fitted, const SemanticGrid& grid, int 
 ExtractedObjects ExtractObjects(const SemanticGrid& grid,
                                 const std::vector<DetectionObservation>& observations,
                                 const std::vector<std::string>& classes,
-                                const SemanticMapOptions& options, const cv::Mat& free_space) {
+                                const SemanticMapOptions& options, const LaserMapCells& laser_map) {
   const ObjectExtractionOptions& o = options.extraction;
   const double threshold = LogitOf(o.occupied_probability);
   ExtractedObjects result;
@@ -338,7 +341,8 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
              static_cast<int>(part.frames.size()) < o.min_observations;
     });
     const auto fit = [&](const ObjectPart& part) {
-      return FitPart(grid, c, part, prior, free_space);
+      return FitPart(grid, c, part, prior,
+                     o.faces_on_walls ? laser_map : LaserMapCells{laser_map.free, cv::Mat()});
     };
     for (const FittedPart& fitted : AssociateParts(std::move(parts), fit, prior, o)) {
       SemanticObject object =

@@ -30,11 +30,18 @@ struct ExtractedObjects {
   std::vector<int> observation_object;
 };
 
-// 'free_space': CV_8UC1 of the grid's size, non-zero where the laser map is free (empty: none).
+// What the laser map says about the grid's cells: CV_8UC1 masks of the grid's size, non-zero
+// where the laser map is free, or occupied (empty: not known). The shapes fitted to the objects
+// keep off free space and stand in front of walls (shape_fit.h).
+struct LaserMapCells {
+  cv::Mat free;
+  cv::Mat occupied;
+};
+
 ExtractedObjects ExtractObjects(const SemanticGrid& grid,
                                 const std::vector<DetectionObservation>& observations,
                                 const std::vector<std::string>& classes,
                                 const SemanticMapOptions& options,
-                                const cv::Mat& free_space = cv::Mat());
+                                const LaserMapCells& laser_map = {});
 
 }  // namespace semchain::semantic

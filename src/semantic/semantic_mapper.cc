@@ -21,6 +21,11 @@ bool Overlaps(const Eigen::Vector2i& low_a, const Eigen::Vector2i& high_a,
   return (low_a.array() <= high_b.array()).all() && (low_b.array() <= high_a.array()).all();
 }
 
+LaserMapCells CellsOf(const mapping::MapImage& occupancy) {
+  return {mapping::MapCellMask(occupancy, mapping::CellState::kFree),
+          mapping::MapCellMask(occupancy, mapping::CellState::kOccupied)};
+}
+
 }  // namespace
 
 // The keyframes: frames with a detection on a mapped object, with the objects' chain
@@ -208,9 +213,9 @@ SemanticMapper::Observations SemanticMapper::ObservationsOn(const GridGeometry& 
 int SemanticMapper::CountObjects(const mapping::MapImage& occupancy) const {
   const GridGeometry geometry = GeometryOf(occupancy);
   const Observations on = ObservationsOn(geometry);
-  return static_cast<int>(ExtractObjects(grid_.Crop(geometry), on.observations, classes_, options_,
-                                         mapping::MapCellMask(occupancy, mapping::CellState::kFree))
-                              .objects.size());
+  return static_cast<int>(
+      ExtractObjects(grid_.Crop(geometry), on.observations, classes_, options_, CellsOf(occupancy))
+          .objects.size());
 }
 
 SemanticMappingResult SemanticMapper::Snapshot(const mapping::MapImage& occupancy) const {
@@ -220,8 +225,7 @@ SemanticMappingResult SemanticMapper::Snapshot(const mapping::MapImage& occupanc
   const std::vector<DetectionObservation>& observations = on.observations;
   std::vector<KeyframeDetection>& sources = on.sources;
   const ExtractedObjects extracted =
-      ExtractObjects(grid, observations, classes_, options_,
-                     mapping::MapCellMask(occupancy, mapping::CellState::kFree));
+      ExtractObjects(grid, observations, classes_, options_, CellsOf(occupancy));
   SemanticMappingResult result;
   result.map.classes = classes_;
   result.map.objects = extracted.objects;

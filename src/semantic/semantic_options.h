@@ -120,6 +120,10 @@ struct ObjectExtractionOptions {
   double fragment_fraction = 0.5;
   double merge_center_fraction = 1.0;
   double merge_overlap = 0.25;
+  // A face lying on a wall of the laser map is the back of an object standing in front of it
+  // (shape_fit.h): a chair's back against the wall, seen from the room, whose fit behind the
+  // face put it beyond the wall. false: every face is taken for the object's front.
+  bool faces_on_walls = true;
 };
 
 struct ChainOptions {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace semchain::semantic {
 namespace {
@@ -118,13 +119,72 @@ Eigen::Vector2d Centroid(const std::vector<Eigen::Vector2d>& points) {
   return sum / static_cast<double>(points.size());
 }
 
+// A wall that a face lies on runs on parallel to the face's line from beyond one of its ends:
+// occupied cells within 'kWallHalfWidth' of one line, between the face's farthest points and
+// its median widened by 'kWallBand' (the wall is where the farthest points are, a chair's back a
+// little in front of it), for at least 'kWallRun' with no gap wider than 'kWallGap' (metres).
+// An object's own face ends within a cell or two of its observed points (the detections' boxes
+// were trimmed), and a wall met at an angle crosses the band within a short run.
+constexpr double kWallBand = 0.075;
+constexpr double kWallHalfWidth = 0.035;
+constexpr double kWallRun = 0.5;
+constexpr double kWallGap = 0.1;
+static_assert(kWallRun + kWallGap <= kFaceWallReach);
+
+// Whether the face whose points span [low, high] along 'along' and [farthest, nearest] along
+// 'normal' (towards the camera) lies on a wall of the laser map.
+bool FaceOnWall(double low, double high, double farthest, double nearest,
+                const Eigen::Vector2d& along, const Eigen::Vector2d& normal,
+                const std::vector<Eigen::Vector2d>& occupied_points) {
+  for (const double side : {-1.0, 1.0}) {
+    const double end = side > 0.0 ? high : low;
+    std::vector<Eigen::Vector2d> beyond;  // (distance beyond the end, offset along the normal)
+    for (const Eigen::Vector2d& cell : occupied_points) {
+      const double t = side * (cell.dot(along) - end);
+      const double offset = cell.dot(normal);
+      if (t > 0.0 && t <= kFaceWallReach && offset >= farthest - kWallBand &&
+          offset <= nearest + kWallBand) {
+        beyond.emplace_back(t, offset);
+      }
+    }
+    std::sort(beyond.begin(), beyond.end(),
+              [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() < b.x(); });
+    for (const Eigen::Vector2d& line : beyond) {
+      double reached = 0.0;
+      for (const Eigen::Vector2d& cell : beyond) {
+        if (std::abs(cell.y() - line.y()) > kWallHalfWidth) continue;
+        if (cell.x() - reached > kWallGap) break;
+        reached = cell.x();
+      }
+      if (reached >= kWallRun) return true;
+    }
+  }
+  return false;
+}
+
 FittedShape FitCircle(const std::vector<Eigen::Vector2d>& points,
                       const std::vector<double>& weights, const Eigen::Vector2d& view_direction,
-                      const ClassShapePrior& prior,
-                      const std::vector<Eigen::Vector2d>& free_points) {
+                      const ClassShapePrior& prior, const std::vector<Eigen::Vector2d>& free_points,
+                      const std::vector<Eigen::Vector2d>& occupied_points) {
   double center[2];
   double radius = prior.radius;
-  const Eigen::Vector2d start = Centroid(points) - view_direction * prior.radius * 0.5;
+  bool on_wall = false;
+  if (!view_direction.isZero()) {
+    const Eigen::Vector2d across(-view_direction.y(), view_direction.x());
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    std::vector<double> offsets;
+    for (const Eigen::Vector2d& p : points) {
+      low = std::min(low, p.dot(across));
+      high = std::max(high, p.dot(across));
+      offsets.push_back(p.dot(view_direction));
+    }
+    std::sort(offsets.begin(), offsets.end());
+    on_wall =
+        FaceOnWall(low, high, offsets[static_cast<std::size_t>(0.05 * double(offsets.size() - 1))],
+                   offsets[offsets.size() / 2], across, view_direction, occupied_points);
+  }
+  const Eigen::Vector2d start =
+      Centroid(points) + view_direction * prior.radius * (on_wall ? 1.0 : -0.5);
   center[0] = start.x();
   center[1] = start.y();
   ceres::Problem problem;
@@ -133,7 +193,7 @@ FittedShape FitCircle(const std::vector<Eigen::Vector2d>& points,
                                  new CircleOutlineResidual(points[i], weights[i])),
                              new ceres::HuberLoss(2.0), center, &radius);
   }
-  for (const Eigen::Vector2d& p : free_points) {
+  for (const Eigen::Vector2d& p : on_wall ? std::vector<Eigen::Vector2d>() : free_points) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CircleOutlineResidual, 1, 2, 1>(
                                  new CircleOutlineResidual(p, 1.0 / kPointStd, true)),
                              new ceres::HuberLoss(2.0), center, &radius);
@@ -208,7 +268,8 @@ BoxCandidate SolveBox(const std::vector<Eigen::Vector2d>& points,
 
 FittedShape FitBox(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& weights,
                    const Eigen::Vector2d& view_direction, const ClassShapePrior& prior,
-                   const std::vector<Eigen::Vector2d>& free_points) {
+                   const std::vector<Eigen::Vector2d>& free_points,
+                   const std::vector<Eigen::Vector2d>& occupied_points) {
   const Eigen::Vector2d centroid = Centroid(points);
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
   for (const Eigen::Vector2d& p : points) scatter += (p - centroid) * (p - centroid).transpose();
@@ -241,8 +302,13 @@ FittedShape FitBox(const std::vector<Eigen::Vector2d>& points, const std::vector
     const double hidden = side_seen                 ? seen_depth
                           : view_direction.isZero() ? prior.depth
                                                     : std::min(prior.depth, face);
-    const Eigen::Vector2d start = 0.5 * (low + high) * along + (nearest - 0.5 * hidden) * normal;
-    return SolveBox(points, weights, free_points, start, yaw, {0.5 * face, 0.5 * hidden},
+    // A thin object (a door in its frame, a clock) is in or on the wall either way.
+    const bool on_wall = !view_direction.isZero() && !side_seen && hidden > kWallBand &&
+                         FaceOnWall(low, high, farthest, nearest, along, normal, occupied_points);
+    const Eigen::Vector2d start =
+        0.5 * (low + high) * along + (nearest + (on_wall ? 0.5 : -0.5) * hidden) * normal;
+    return SolveBox(points, weights, on_wall ? std::vector<Eigen::Vector2d>() : free_points, start,
+                    yaw, {0.5 * face, 0.5 * hidden},
                     {kFaceWidthStd, side_seen ? 0.5 * kFaceWidthStd : 0.5 * prior.size_std});
   };
   // Candidate orientations of the face: across the viewing direction, and along the points'
@@ -291,12 +357,13 @@ FittedShape FitBox(const std::vector<Eigen::Vector2d>& points, const std::vector
 
 FittedShape FitShape(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& weights,
                      const Eigen::Vector2d& view_direction, const ClassShapePrior& prior,
-                     const std::vector<Eigen::Vector2d>& free_points) {
+                     const std::vector<Eigen::Vector2d>& free_points,
+                     const std::vector<Eigen::Vector2d>& occupied_points) {
   if (points.empty()) return {};
   const std::vector<double> scaled = NormalisedWeights(weights);
   return prior.shape == ClassShapePrior::Shape::kCircle
-             ? FitCircle(points, scaled, view_direction, prior, free_points)
-             : FitBox(points, scaled, view_direction, prior, free_points);
+             ? FitCircle(points, scaled, view_direction, prior, free_points, occupied_points)
+             : FitBox(points, scaled, view_direction, prior, free_points, occupied_points);
 }
 
 }  // namespace semchain::semantic
