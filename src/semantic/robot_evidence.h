@@ -37,8 +37,8 @@ struct RobotEvidence {
   Eigen::Vector2d camera = Eigen::Vector2d::Zero();  // the camera's position on the robot
 };
 
-// 'classes' gives the class ids; detections of other classes and nested duplicates (a box
-// inside a larger one of its class) are left out.
+// 'classes' gives the class ids; detections of other classes and nested duplicates (a box at
+// least half inside a larger one of its class) are left out.
 RobotEvidence ComputeRobotEvidence(const FrameDetections& frame, const cv::Mat& depth_m,
                                    const std::vector<std::string>& classes,
                                    const MountedCamera& camera, const SemanticMapOptions& options);
