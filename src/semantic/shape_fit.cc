@@ -162,29 +162,49 @@ bool FaceOnWall(double low, double high, double farthest, double nearest,
   return false;
 }
 
+// The direction of the largest spread of 'points' (unit).
+Eigen::Vector2d MajorAxis(const std::vector<Eigen::Vector2d>& points) {
+  const Eigen::Vector2d centroid = Centroid(points);
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const Eigen::Vector2d& p : points) scatter += (p - centroid) * (p - centroid).transpose();
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(1);
+}
+
 FittedShape FitCircle(const std::vector<Eigen::Vector2d>& points,
                       const std::vector<double>& weights, const Eigen::Vector2d& view_direction,
                       const ClassShapePrior& prior, const std::vector<Eigen::Vector2d>& free_points,
                       const std::vector<Eigen::Vector2d>& occupied_points) {
   double center[2];
   double radius = prior.radius;
+  // The wall a seen arc touches runs across the view or, seen at an angle, along the points
+  // (what the camera took for the object reaches along the wall); in front of it is away from it.
   bool on_wall = false;
+  Eigen::Vector2d out_of_wall = view_direction;
   if (!view_direction.isZero()) {
-    const Eigen::Vector2d across(-view_direction.y(), view_direction.x());
-    double low = std::numeric_limits<double>::infinity(), high = -low;
-    std::vector<double> offsets;
-    for (const Eigen::Vector2d& p : points) {
-      low = std::min(low, p.dot(across));
-      high = std::max(high, p.dot(across));
-      offsets.push_back(p.dot(view_direction));
+    for (const Eigen::Vector2d& across :
+         {Eigen::Vector2d(-view_direction.y(), view_direction.x()), MajorAxis(points)}) {
+      Eigen::Vector2d normal(-across.y(), across.x());
+      if (normal.dot(view_direction) < 0.0) normal = -normal;
+      double low = std::numeric_limits<double>::infinity(), high = -low;
+      std::vector<double> offsets;
+      for (const Eigen::Vector2d& p : points) {
+        low = std::min(low, p.dot(across));
+        high = std::max(high, p.dot(across));
+        offsets.push_back(p.dot(normal));
+      }
+      std::sort(offsets.begin(), offsets.end());
+      if (FaceOnWall(low, high,
+                     offsets[static_cast<std::size_t>(0.05 * double(offsets.size() - 1))],
+                     offsets[offsets.size() / 2], across, normal, occupied_points)) {
+        on_wall = true;
+        out_of_wall = normal;
+        break;
+      }
     }
-    std::sort(offsets.begin(), offsets.end());
-    on_wall =
-        FaceOnWall(low, high, offsets[static_cast<std::size_t>(0.05 * double(offsets.size() - 1))],
-                   offsets[offsets.size() / 2], across, view_direction, occupied_points);
   }
   const Eigen::Vector2d start =
-      Centroid(points) + view_direction * prior.radius * (on_wall ? 1.0 : -0.5);
+      Centroid(points) + (on_wall ? Eigen::Vector2d(out_of_wall * prior.radius)
+                                  : Eigen::Vector2d(-0.5 * prior.radius * view_direction));
   center[0] = start.x();
   center[1] = start.y();
   ceres::Problem problem;
@@ -270,11 +290,7 @@ FittedShape FitBox(const std::vector<Eigen::Vector2d>& points, const std::vector
                    const Eigen::Vector2d& view_direction, const ClassShapePrior& prior,
                    const std::vector<Eigen::Vector2d>& free_points,
                    const std::vector<Eigen::Vector2d>& occupied_points) {
-  const Eigen::Vector2d centroid = Centroid(points);
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Eigen::Vector2d& p : points) scatter += (p - centroid) * (p - centroid).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
-  const Eigen::Vector2d major = eigen.eigenvectors().col(1);
+  const Eigen::Vector2d major = MajorAxis(points);
   // Sizes and start of a box of orientation 'yaw' from the points, and its fit.
   const auto solve = [&](double yaw) {
     const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw));

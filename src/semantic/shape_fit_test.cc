@@ -182,5 +182,20 @@ TEST(ShapeFitTest, AStoolAgainstAWallIsInFrontOfIt) {
   EXPECT_NEAR(shape.center.x(), 1.0, 0.03);
 }
 
+TEST(ShapeFitTest, AStoolSeenAtAnAngleAgainstAWallIsInFrontOfIt) {
+  ClassShapePrior prior;
+  prior.shape = ClassShapePrior::Shape::kCircle;
+  prior.radius = 0.17;
+  // Seen at 30° from the wall's normal, what the camera took for the stool lies along the wall
+  // (its back and the wall beside it): the line across the view does not run along the wall,
+  // the points do.
+  const auto points = Segment({0.8, 1.97}, {1.2, 1.97}, 9);
+  const std::vector<double> weights(points.size(), 1.0);
+  const Eigen::Vector2d oblique(-0.5, -std::sqrt(0.75));
+  const FittedShape shape = FitShape(points, weights, oblique, prior, {}, WallCells(0.0, 3.0, 2.0));
+  EXPECT_LT(shape.center.y(), 1.9);
+  EXPECT_GT(FitShape(points, weights, oblique, prior).center.y(), 2.0);
+}
+
 }  // namespace
 }  // namespace semchain::semantic
