@@ -62,6 +62,7 @@ def _add_train_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--close-mosaic", type=int, default=d.close_mosaic, help="no mosaic in the last N epochs")
     parser.add_argument("--no-mosaic", action="store_true", help="never use mosaic")
     parser.add_argument("--eval-every", type=int, default=d.eval_every, help="validate every N epochs")
+    parser.add_argument("--checkpoint-batches", type=int, default=d.checkpoint_batches, help=f"also write last.pt within an epoch, every N batches (0: at epoch ends only; default {d.checkpoint_batches})")
     parser.add_argument("--seed", type=int, default=d.seed, help=f"default {d.seed}")
     parser.add_argument("--device", default=d.device, help="cpu | cuda | cuda:N (default cpu)")
     parser.add_argument("--workers", type=int, default=d.workers, help=f"data loader processes (default {d.workers})")
@@ -99,7 +100,7 @@ def _run_train(args: argparse.Namespace) -> int:
             optimizer=args.optimizer, lr0=args.lr0, lrf=args.lrf, schedule=args.schedule,
             warmup_epochs=args.warmup_epochs, mosaic=not args.no_mosaic, close_mosaic=args.close_mosaic,
             seed=args.seed, device=args.device, workers=args.workers, threads=args.threads,
-            eval_every=args.eval_every, progress=progress,
+            eval_every=args.eval_every, checkpoint_batches=args.checkpoint_batches, progress=progress,
         )
         options.validate()
         torch.manual_seed(args.seed)

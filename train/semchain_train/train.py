@@ -1,6 +1,7 @@
 """The training loop: YOLOv8's recipe (warm-up, linear/cosine decay, mosaic closed for the last epochs,
 gradient accumulation to a nominal batch of 64, clipping, EMA) with validation of the EMA model,
-best.pt by fitness, last.pt every epoch and exact resumption from last.pt.
+best.pt by fitness, last.pt every epoch and every `checkpoint_batches` batches within one, and exact
+resumption from last.pt, mid-epoch too.
 """
 
 from __future__ import annotations
@@ -90,6 +91,9 @@ class TrainOptions:
     threads: int | None = None  # torch CPU threads; None: the cores this process may use
     resume: bool = False  # continue from out/last.pt
     eval_every: int = 1  # validate every N epochs (and always after the last)
+    # last.pt is also written within an epoch, at the first optimizer step after every N batches
+    # (0: at epoch ends only), so that a run stopped mid-epoch loses minutes, not the epoch.
+    checkpoint_batches: int = 200
     val_split: str = "val"
     progress: bool = True  # tqdm bars
 
@@ -114,8 +118,8 @@ class TrainOptions:
             raise TrainError(f"optimizer '{self.optimizer}': expected one of {', '.join(OPTIMIZERS)}")
         if self.schedule not in SCHEDULES:
             raise TrainError(f"schedule '{self.schedule}': expected one of {', '.join(SCHEDULES)}")
-        if self.eval_every < 1 or self.workers < 0:
-            raise TrainError("eval_every must be >= 1 and workers >= 0")
+        if self.eval_every < 1 or self.workers < 0 or self.checkpoint_batches < 0:
+            raise TrainError("eval_every must be >= 1, workers and checkpoint_batches >= 0")
         if not self.lr0 > 0:
             raise TrainError(f"lr0 {self.lr0}: must be positive")
         check_device(self.device)
@@ -183,6 +187,9 @@ class _RunState:
     start_epoch: int = 0
     best_fitness: float | None = None
     rows: list[dict[str, Any]] = field(default_factory=list)
+    # Where a checkpoint written within start_epoch left it: batches done, their loss sums and
+    # the seconds spent ({} at an epoch's start).
+    partial: dict[str, Any] = field(default_factory=dict)
 
 
 def fit(
@@ -260,24 +267,38 @@ def fit(
     eval_options = EvalOptions(input_size=tuple(options.input_size), batch=options.batch)
     parameters = [p for p in model.parameters() if p.requires_grad]
 
+    def extra_state(partial: dict[str, Any]) -> dict[str, Any]:
+        return {
+            "rng": _rng_state(),
+            "scaler": scaler.state_dict(),
+            "results": state.rows,
+            "user": extra_checkpoint or {},
+            "partial": partial,
+        }
+
     for epoch in range(state.start_epoch, options.epochs):
-        started, cpu_started = time.time(), _cpu_seconds()
+        partial = state.partial if epoch == state.start_epoch else {}
+        done = int(partial.get("batches", 0))
+        started = time.time() - float(partial.get("seconds", 0.0))
+        cpu_started = _cpu_seconds() - float(partial.get("cpu_seconds", 0.0))
         model.train()
         train_set.set_epoch(epoch, mosaic=epoch < options.epochs - options.close_mosaic)
+        # A resumed epoch goes on with the batches it had not reached, in the same order.
         loader = torch.utils.data.DataLoader(
             train_set,
             batch_size=options.batch,
-            sampler=epoch_order(options.seed, epoch, len(train_set)),
+            sampler=epoch_order(options.seed, epoch, len(train_set))[done * options.batch :],
             num_workers=options.workers,
             collate_fn=collate,
             pin_memory=device.type == "cuda",
         )
         bar = _progress(loader, options.progress, f"epoch {epoch + 1}/{options.epochs}")
-        loss_sum = torch.zeros(3)
-        last_step = -1
+        loss_sum = torch.tensor(partial.get("loss_sum", [0.0, 0.0, 0.0]))
+        last_step = done - 1
+        saved_at = done
         optimizer.zero_grad(set_to_none=True)
         rates: dict[str, float] = {}
-        for i, (images, targets) in enumerate(bar):
+        for i, (images, targets) in enumerate(bar, start=done):
             iteration = i + epoch * batches_per_epoch
             rates, momentum = learning_rates(schedule, epoch, options.epochs, iteration, batches_per_epoch)
             apply_rates(optimizer, rates, momentum)
@@ -301,6 +322,21 @@ def fit(
                 ema.update(model)
                 last_step = i
             loss_sum += parts.cpu()
+            if (
+                options.checkpoint_batches
+                and last_step == i
+                and i + 1 - saved_at >= options.checkpoint_batches
+                and i + 1 < batches_per_epoch
+            ):
+                saved_at = i + 1
+                save_checkpoint(
+                    out / "last.pt", model, names=names, epoch=epoch - 1, ema=ema, optimizer=optimizer,
+                    best_fitness=state.best_fitness, train_options=options,
+                    extra=extra_state({
+                        "batches": i + 1, "loss_sum": loss_sum.tolist(),
+                        "seconds": time.time() - started, "cpu_seconds": _cpu_seconds() - cpu_started,
+                    }),
+                )
             mean = loss_sum / (i + 1)
             if options.progress:
                 bar.set_postfix(box=f"{mean[0]:.3f}", cls=f"{mean[1]:.3f}", dfl=f"{mean[2]:.3f}", lr=f"{rates['weights']:.2e}")
@@ -331,15 +367,9 @@ def fit(
         row["seconds"] = time.time() - started
         row["cpu_seconds"] = _cpu_seconds() - cpu_started
         state.rows.append(row)
-        extra = {
-            "rng": _rng_state(),
-            "scaler": scaler.state_dict(),
-            "results": state.rows,
-            "user": extra_checkpoint or {},
-        }
         last = save_checkpoint(
             out / "last.pt", model, names=names, epoch=epoch, ema=ema, optimizer=optimizer,
-            best_fitness=state.best_fitness, train_options=options, extra=extra,
+            best_fitness=state.best_fitness, train_options=options, extra=extra_state({}),
         )
         if improved:
             _copy_atomically(last, out / "best.pt")
@@ -374,7 +404,10 @@ def _restore(path: Path, model: nn.Module, ema: ModelEMA, optimizer, scaler, dev
     if "rng" in extra:
         _set_rng_state(extra["rng"])
     return _RunState(
-        start_epoch=checkpoint.epoch + 1, best_fitness=raw.get("best_fitness"), rows=list(extra.get("results", []))
+        start_epoch=checkpoint.epoch + 1,
+        best_fitness=raw.get("best_fitness"),
+        rows=list(extra.get("results", [])),
+        partial=dict(extra.get("partial") or {}),
     )
 
 

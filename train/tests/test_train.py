@@ -61,6 +61,40 @@ def test_resume_after_an_interrupted_epoch_gives_the_same_weights(tmp_path: Path
     assert not all(torch.equal(start[n], a["model"].state_dict()[n]) for n in start)
 
 
+def test_resume_within_an_epoch_gives_the_same_weights(tmp_path: Path) -> None:
+    # Four images, batch 1, two batches per optimizer step: last.pt is written after the step that
+    # ends the second batch of each epoch; stopped in the third batch of the second epoch, the run
+    # goes on from there, not from the epoch's start.
+    data = four_colour_dataset(tmp_path / "data")
+    overrides = dict(batch=1, nominal_batch=2, warmup_epochs=0, checkpoint_batches=2)
+    straight = fit(_model(), _options(data, tmp_path / "straight", **overrides), CLASS_NAMES)
+
+    def interrupt(epoch: int, iteration: int) -> None:
+        if (epoch, iteration) == (1, 2):
+            raise Interrupted
+
+    with pytest.raises(Interrupted):
+        fit(_model(), _options(data, tmp_path / "resumed", **overrides), CLASS_NAMES, on_batch_end=interrupt)
+    saved = load_checkpoint(tmp_path / "resumed" / "last.pt")
+    assert saved.epoch == 0 and saved.raw["extra"]["partial"]["batches"] == 2
+    seen: list[tuple[int, int]] = []
+    fit(_model(), _options(data, tmp_path / "resumed", resume=True, **overrides), CLASS_NAMES,
+        on_batch_end=lambda epoch, iteration: seen.append((epoch, iteration)))
+    assert seen[0] == (1, 2)  # the two batches done are not done again
+
+    a = load_checkpoint(straight.parent / "last.pt").raw
+    b = load_checkpoint(tmp_path / "resumed" / "last.pt").raw
+    assert a["epoch"] == b["epoch"] == 2 and a["ema_updates"] == b["ema_updates"] > 0
+    for key in ("model", "ema"):
+        sa, sb = a[key].state_dict(), b[key].state_dict()
+        assert all(torch.equal(sa[name], sb[name]) for name in sa), key
+    assert not b["extra"]["partial"]
+    rows = list(csv.DictReader((tmp_path / "resumed" / "results.csv").open()))
+    straight_rows = list(csv.DictReader((tmp_path / "straight" / "results.csv").open()))
+    assert [r["epoch"] for r in rows] == ["1", "2", "3"]
+    assert [r["box_loss"] for r in rows] == [r["box_loss"] for r in straight_rows]
+
+
 def test_fit_writes_the_run_folder(tmp_path: Path) -> None:
     data = four_colour_dataset(tmp_path / "data")
     best = fit(_model(), _options(data, tmp_path / "run", epochs=2, eval_every=5), CLASS_NAMES)
