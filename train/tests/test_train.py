@@ -34,6 +34,17 @@ def _two_image_data(root: Path) -> Path:
     return write_dataset(root, rects)
 
 
+def _same_final_weights(straight: Path, resumed: Path) -> tuple[dict, dict]:
+    """The two run folders' last.pt (raw), asserted to hold the same model and EMA weights."""
+    a = load_checkpoint(straight / "last.pt").raw
+    b = load_checkpoint(resumed / "last.pt").raw
+    assert a["epoch"] == b["epoch"] == 2 and a["ema_updates"] == b["ema_updates"] > 0
+    for key in ("model", "ema"):
+        sa, sb = a[key].state_dict(), b[key].state_dict()
+        assert all(torch.equal(sa[name], sb[name]) for name in sa), key
+    return a, b
+
+
 def test_resume_after_an_interrupted_epoch_gives_the_same_weights(tmp_path: Path) -> None:
     data = _two_image_data(tmp_path / "data")
     straight = fit(_model(), _options(data, tmp_path / "straight"), CLASS_NAMES)
@@ -47,12 +58,7 @@ def test_resume_after_an_interrupted_epoch_gives_the_same_weights(tmp_path: Path
     assert load_checkpoint(tmp_path / "resumed" / "last.pt").epoch == 1
     fit(_model(), _options(data, tmp_path / "resumed", resume=True), CLASS_NAMES)
 
-    a = load_checkpoint(straight.parent / "last.pt").raw
-    b = load_checkpoint(tmp_path / "resumed" / "last.pt").raw
-    assert a["epoch"] == b["epoch"] == 2 and a["ema_updates"] == b["ema_updates"] > 0
-    for key in ("model", "ema"):
-        sa, sb = a[key].state_dict(), b[key].state_dict()
-        assert all(torch.equal(sa[name], sb[name]) for name in sa), key
+    a, b = _same_final_weights(straight.parent, tmp_path / "resumed")
     assert a["best_fitness"] == b["best_fitness"]
     rows = list(csv.DictReader((tmp_path / "resumed" / "results.csv").open()))
     assert [r["epoch"] for r in rows] == ["1", "2", "3"]
@@ -82,12 +88,7 @@ def test_resume_within_an_epoch_gives_the_same_weights(tmp_path: Path) -> None:
         on_batch_end=lambda epoch, iteration: seen.append((epoch, iteration)))
     assert seen[0] == (1, 2)  # the two batches done are not done again
 
-    a = load_checkpoint(straight.parent / "last.pt").raw
-    b = load_checkpoint(tmp_path / "resumed" / "last.pt").raw
-    assert a["epoch"] == b["epoch"] == 2 and a["ema_updates"] == b["ema_updates"] > 0
-    for key in ("model", "ema"):
-        sa, sb = a[key].state_dict(), b[key].state_dict()
-        assert all(torch.equal(sa[name], sb[name]) for name in sa), key
+    a, b = _same_final_weights(straight.parent, tmp_path / "resumed")
     assert not b["extra"]["partial"]
     rows = list(csv.DictReader((tmp_path / "resumed" / "results.csv").open()))
     straight_rows = list(csv.DictReader((tmp_path / "straight" / "results.csv").open()))
