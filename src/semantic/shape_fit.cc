@@ -119,6 +119,36 @@ Eigen::Vector2d Centroid(const std::vector<Eigen::Vector2d>& points) {
   return sum / static_cast<double>(points.size());
 }
 
+// The unit normal of a face running along 'along', turned towards 'view_direction' (the camera).
+Eigen::Vector2d NormalTowards(const Eigen::Vector2d& along, const Eigen::Vector2d& view_direction) {
+  const Eigen::Vector2d normal(-along.y(), along.x());
+  return normal.dot(view_direction) < 0.0 ? Eigen::Vector2d(-normal) : normal;
+}
+
+// How the points lie as a face along 'along', seen from where 'normal' points.
+struct FaceSpan {
+  double low = 0.0, high = 0.0;  // extent along the face
+  // Along the normal (larger is nearer the camera): the face is where most points are (the
+  // median); the spread behind it is read robustly (the 5th percentile) so that a few noisy
+  // cells do not look like a side.
+  double nearest = 0.0, farthest = 0.0;
+};
+
+FaceSpan SpanOf(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& along,
+                const Eigen::Vector2d& normal) {
+  FaceSpan span{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  std::vector<double> offsets;
+  for (const Eigen::Vector2d& p : points) {
+    span.low = std::min(span.low, p.dot(along));
+    span.high = std::max(span.high, p.dot(along));
+    offsets.push_back(p.dot(normal));
+  }
+  std::sort(offsets.begin(), offsets.end());
+  span.nearest = offsets[offsets.size() / 2];
+  span.farthest = offsets[static_cast<std::size_t>(0.05 * double(offsets.size() - 1))];
+  return span;
+}
+
 // A wall that a face lies on runs on parallel to the face's line from beyond one of its ends:
 // occupied cells within 'kWallHalfWidth' of one line, between the face's farthest points and
 // its median widened by 'kWallBand' (the wall is where the farthest points are, a chair's back a
@@ -131,19 +161,18 @@ constexpr double kWallRun = 0.5;
 constexpr double kWallGap = 0.1;
 static_assert(kWallRun + kWallGap <= kFaceWallReach);
 
-// Whether the face whose points span [low, high] along 'along' and [farthest, nearest] along
-// 'normal' (towards the camera) lies on a wall of the laser map.
-bool FaceOnWall(double low, double high, double farthest, double nearest,
-                const Eigen::Vector2d& along, const Eigen::Vector2d& normal,
+// Whether the face 'span' (along 'along', its normal 'normal' towards the camera) lies on a wall
+// of the laser map.
+bool FaceOnWall(const FaceSpan& span, const Eigen::Vector2d& along, const Eigen::Vector2d& normal,
                 const std::vector<Eigen::Vector2d>& occupied_points) {
   for (const double side : {-1.0, 1.0}) {
-    const double end = side > 0.0 ? high : low;
+    const double end = side > 0.0 ? span.high : span.low;
     std::vector<Eigen::Vector2d> beyond;  // (distance beyond the end, offset along the normal)
     for (const Eigen::Vector2d& cell : occupied_points) {
       const double t = side * (cell.dot(along) - end);
       const double offset = cell.dot(normal);
-      if (t > 0.0 && t <= kFaceWallReach && offset >= farthest - kWallBand &&
-          offset <= nearest + kWallBand) {
+      if (t > 0.0 && t <= kFaceWallReach && offset >= span.farthest - kWallBand &&
+          offset <= span.nearest + kWallBand) {
         beyond.emplace_back(t, offset);
       }
     }
@@ -183,19 +212,8 @@ FittedShape FitCircle(const std::vector<Eigen::Vector2d>& points,
   if (!view_direction.isZero()) {
     for (const Eigen::Vector2d& across :
          {Eigen::Vector2d(-view_direction.y(), view_direction.x()), MajorAxis(points)}) {
-      Eigen::Vector2d normal(-across.y(), across.x());
-      if (normal.dot(view_direction) < 0.0) normal = -normal;
-      double low = std::numeric_limits<double>::infinity(), high = -low;
-      std::vector<double> offsets;
-      for (const Eigen::Vector2d& p : points) {
-        low = std::min(low, p.dot(across));
-        high = std::max(high, p.dot(across));
-        offsets.push_back(p.dot(normal));
-      }
-      std::sort(offsets.begin(), offsets.end());
-      if (FaceOnWall(low, high,
-                     offsets[static_cast<std::size_t>(0.05 * double(offsets.size() - 1))],
-                     offsets[offsets.size() / 2], across, normal, occupied_points)) {
+      const Eigen::Vector2d normal = NormalTowards(across, view_direction);
+      if (FaceOnWall(SpanOf(points, across, normal), across, normal, occupied_points)) {
         on_wall = true;
         out_of_wall = normal;
         break;
@@ -294,35 +312,23 @@ FittedShape FitBox(const std::vector<Eigen::Vector2d>& points, const std::vector
   // Sizes and start of a box of orientation 'yaw' from the points, and its fit.
   const auto solve = [&](double yaw) {
     const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw));
-    Eigen::Vector2d normal(-along.y(), along.x());
-    if (normal.dot(view_direction) < 0.0) normal = -normal;  // towards the camera
-    double low = 1e300, high = -1e300;
-    std::vector<double> offsets;  // along the normal: larger is nearer the camera
-    for (const Eigen::Vector2d& p : points) {
-      low = std::min(low, p.dot(along));
-      high = std::max(high, p.dot(along));
-      offsets.push_back(p.dot(normal));
-    }
-    // The face is where most points are (the median); the spread behind it is read robustly
-    // so that a few noisy cells do not look like a side.
-    std::sort(offsets.begin(), offsets.end());
-    const double nearest = offsets[offsets.size() / 2];
-    const double farthest = offsets[static_cast<std::size_t>(0.05 * double(offsets.size() - 1))];
-    const double face = high - low;
+    const Eigen::Vector2d normal = NormalTowards(along, view_direction);
+    const FaceSpan span = SpanOf(points, along, normal);
+    const double face = span.high - span.low;
     // A side seen (points reaching well back from the face) shows the depth. Otherwise what
     // lies behind the face is unseen: furniture is seldom deeper than it is wide, so the
     // class's depth is taken, but no more than the face is wide (this bounds the error when a
     // world's objects are smaller than the class prior).
-    const double seen_depth = nearest - farthest;
+    const double seen_depth = span.nearest - span.farthest;
     const bool side_seen = seen_depth > kSideSeenDepth;
     const double hidden = side_seen                 ? seen_depth
                           : view_direction.isZero() ? prior.depth
                                                     : std::min(prior.depth, face);
     // A thin object (a door in its frame, a clock) is in or on the wall either way.
     const bool on_wall = !view_direction.isZero() && !side_seen && hidden > kWallBand &&
-                         FaceOnWall(low, high, farthest, nearest, along, normal, occupied_points);
-    const Eigen::Vector2d start =
-        0.5 * (low + high) * along + (nearest + (on_wall ? 0.5 : -0.5) * hidden) * normal;
+                         FaceOnWall(span, along, normal, occupied_points);
+    const Eigen::Vector2d start = 0.5 * (span.low + span.high) * along +
+                                  (span.nearest + (on_wall ? 0.5 : -0.5) * hidden) * normal;
     return SolveBox(points, weights, on_wall ? std::vector<Eigen::Vector2d>() : free_points, start,
                     yaw, {0.5 * face, 0.5 * hidden},
                     {kFaceWidthStd, side_seen ? 0.5 * kFaceWidthStd : 0.5 * prior.size_std});
