@@ -4,7 +4,7 @@
 An object of the map matches the nearest unmatched world object of its class within 0.3 m
 (tests/semantic_worlds_e2e_test.cc), the objects seen in most frames first; precision = matched /
 map objects, recall = matched / world objects. Prints one JSON object; exits 1 below
---min-precision or --min-recall.
+--min-precision or --min-recall, 2 on a file it cannot read.
 
 Each false map object and each missed world object also gets a reason, counted in "false_why"
 and "missed_why", so that a score can be traced to the step that lost it:
@@ -127,10 +127,21 @@ def main() -> int:
     parser.add_argument("--min-precision", type=float, default=0.97)
     parser.add_argument("--min-recall", type=float, default=0.97)
     args = parser.parse_args()
-    with open(args.semantic_json, encoding="utf-8") as file:
-        mapped = json.load(file)["objects"]
-    with open(args.world_yaml, encoding="utf-8") as file:
-        world = world_objects(yaml.safe_load(file)["objects"])
+    try:
+        with open(args.semantic_json, encoding="utf-8") as file:
+            mapped = json.load(file)["objects"]
+        for i, obj in enumerate(mapped):
+            if not isinstance(obj.get("class"), str) or len(obj.get("center") or []) != 2:
+                raise ValueError(f"object {i} lacks a class or a two-number centre")
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as error:
+        print(f"{args.semantic_json}: not a semantic map ({error})", file=sys.stderr)
+        return 2
+    try:
+        with open(args.world_yaml, encoding="utf-8") as file:
+            world = world_objects(yaml.safe_load(file)["objects"])
+    except (OSError, yaml.YAMLError, KeyError, TypeError, ValueError) as error:
+        print(f"{args.world_yaml}: not a world with objects ({error})", file=sys.stderr)
+        return 2
     result = score(mapped, world, args.max_distance, args.near)
     print(json.dumps(result, indent=2))
     ok = result["precision"] >= args.min_precision and result["recall"] >= args.min_recall

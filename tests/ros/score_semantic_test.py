@@ -54,3 +54,25 @@ def test_the_best_seen_object_takes_the_match() -> None:
                                   WORLD, max_distance=0.3, near=1.0)
     assert abs(result["mean_centre_error_m"] - 0.1) < 1e-12
     assert [o["why"] for o in result["unmatched_map_objects"]] == ["mapped twice"]
+
+
+def test_a_file_it_cannot_read_is_one_line_and_exit_2(tmp_path: pathlib.Path) -> None:
+    import subprocess
+    import sys
+
+    world = tmp_path / "world.yaml"
+    world.write_text("objects:\n  - {class: chair, x: 0, y: 0, width: 0.5, depth: 0.5}\n")
+    bad = tmp_path / "semantic.json"
+    bad.write_text('{"objects": [{"class": "chair"}]}')
+    good = tmp_path / "good.json"
+    good.write_text('{"objects": [{"class": "chair", "center": [0.1, 0.0]}]}')
+    script = pathlib.Path(__file__).with_name("score_semantic.py")
+    for args, named in (([bad, world], bad), ([tmp_path / "none.json", world], "none.json"),
+                        ([good, tmp_path / "none.yaml"], "none.yaml")):
+        run = subprocess.run([sys.executable, str(script), *map(str, args)], capture_output=True,
+                             text=True)
+        assert run.returncode == 2
+        assert run.stdout == "" and len(run.stderr.splitlines()) == 1
+        assert str(named) in run.stderr
+    ok = subprocess.run([sys.executable, str(script), str(good), str(world)], capture_output=True)
+    assert ok.returncode == 0

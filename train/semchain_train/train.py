@@ -118,8 +118,10 @@ class TrainOptions:
             raise TrainError(f"optimizer '{self.optimizer}': expected one of {', '.join(OPTIMIZERS)}")
         if self.schedule not in SCHEDULES:
             raise TrainError(f"schedule '{self.schedule}': expected one of {', '.join(SCHEDULES)}")
-        if self.eval_every < 1 or self.workers < 0 or self.checkpoint_batches < 0:
-            raise TrainError("eval_every must be >= 1, workers and checkpoint_batches >= 0")
+        if self.eval_every < 1 or self.workers < 0:
+            raise TrainError("eval_every must be >= 1 and workers >= 0")
+        if self.checkpoint_batches < 0:
+            raise TrainError(f"checkpoint_batches {self.checkpoint_batches}: must be >= 0 (0: at epoch ends only)")
         if not self.lr0 > 0:
             raise TrainError(f"lr0 {self.lr0}: must be positive")
         check_device(self.device)
