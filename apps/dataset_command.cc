@@ -1,4 +1,5 @@
 // semchain dataset --out DIR --images N --seed S [--size WxH] [--images-per-room K] [--threads T]
+//                  [--borrowed-footprints F]
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -19,6 +20,7 @@ struct DatasetArgs {
   std::string size = "320x256";
   int images_per_room = 10;
   int threads = 2;
+  double borrowed_footprints = 0.0;
 };
 
 Status ParseSize(const std::string& text, int* width, int* height) {
@@ -35,6 +37,7 @@ Status RunDataset(const DatasetArgs& args) {
   options.seed = args.seed;
   options.images_per_room = args.images_per_room;
   options.threads = args.threads;
+  options.borrowed_footprint_fraction = args.borrowed_footprints;
   SEMCHAIN_RETURN_IF_ERROR(ParseSize(args.size, &options.width, &options.height));
   SEMCHAIN_RETURN_IF_ERROR(options.Validate());
   ProgressBar bar("dataset", static_cast<std::size_t>(options.images));
@@ -79,6 +82,12 @@ void AddDatasetCommand(CLI::App& app, int& exit_code) {
       ->add_option("--threads", args->threads,
                    "Rendering threads (the output does not "
                    "depend on them)")
+      ->capture_default_str();
+  command
+      ->add_option("--borrowed-footprints", args->borrowed_footprints,
+                   "Share (0..1) of furniture given the footprint size of another class of its "
+                   "size group (a sofa the size of a bed, a cabinet the size of a table), so that "
+                   "a detector cannot name objects by their size")
       ->capture_default_str();
   command->callback([args, &exit_code] {
     const Status status = RunDataset(*args);

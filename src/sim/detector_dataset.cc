@@ -64,7 +64,9 @@ class DatasetWriter {
       : staging_(staging), options_(options) {}
 
   Result<RoomOutput> WriteRoom(int room) const {
-    const World world = RandomRoom(Derive(options_.seed, room, 1));
+    RandomRoomOptions room_options;
+    room_options.borrowed_footprint_fraction = options_.borrowed_footprint_fraction;
+    const World world = RandomRoom(Derive(options_.seed, room, 1), room_options);
     RoomOutput output;
     output.split = SplitOfRoom(room, options_);
     output.instances.assign(DefaultClassNames().size(), 0);
@@ -133,6 +135,7 @@ std::string SummaryJson(const DatasetSummary& summary, const DatasetOptions& opt
   nlohmann::ordered_json json;
   json["seed"] = options.seed;
   json["size"] = {options.width, options.height};
+  json["borrowed_footprint_fraction"] = options.borrowed_footprint_fraction;
   for (const Split split : kSplits) {
     const int s = static_cast<int>(split);
     nlohmann::ordered_json& entry = json[SplitName(split)];
@@ -157,6 +160,10 @@ Status DatasetOptions::Validate() const {
   }
   if (images_per_room < 1) return Status::Error("--images-per-room must be at least 1");
   if (threads < 1 || threads > 256) return Status::Error("--threads must be 1..256");
+  if (!(borrowed_footprint_fraction >= 0.0 && borrowed_footprint_fraction <= 1.0)) {
+    return Status::Error("--borrowed-footprints must be 0..1, got " +
+                         std::to_string(borrowed_footprint_fraction));
+  }
   if (val_rooms_in_ten < 0 || test_rooms_in_ten < 0 || val_rooms_in_ten + test_rooms_in_ten > 9) {
     return Status::Error("val and test rooms must leave training rooms (at most 9 in 10)");
   }

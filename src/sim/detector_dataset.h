@@ -33,6 +33,9 @@ struct DatasetOptions {
   // this many pixels both ways: the detection model's defaults (DetectionModelSpec).
   double min_visible_fraction = 0.3;
   int min_box_pixels = 12;
+  // RandomRoomOptions::borrowed_footprint_fraction of the rooms (0..1): objects whose size does
+  // not tell their class.
+  double borrowed_footprint_fraction = 0.0;
 
   Status Validate() const;
 };

@@ -60,6 +60,63 @@ TEST(RandomRoomTest, HoldsEveryClassAndPassesValidation) {
   }
 }
 
+bool WithinRange(double width, double depth, const ClassSizeRange& range) {
+  constexpr double kSlack = 1e-9;
+  return width >= range.width_min - kSlack && width <= range.width_max + kSlack &&
+         depth >= range.depth_min - kSlack && depth <= range.depth_max + kSlack;
+}
+
+// Footprint sizes along the solid's own axes (a round one: its diameter both ways).
+std::pair<double, double> FootprintSize(const Solid& solid) {
+  if (solid.footprint.shape == Footprint::Shape::kCircle) {
+    return {2.0 * solid.footprint.radius, 2.0 * solid.footprint.radius};
+  }
+  return {solid.footprint.width, solid.footprint.depth};
+}
+
+// With every footprint borrowed, furniture takes the sizes of the other classes of its size
+// group (a sofa as deep as a bed), never of a class outside it, and keeps its own height.
+TEST(RandomRoomTest, BorrowedFootprintsComeFromTheSizeGroup) {
+  RandomRoomOptions options;
+  options.borrowed_footprint_fraction = 1.0;
+  int outside_own_range = 0, furniture = 0;
+  for (std::uint64_t seed = 0; seed < 30; ++seed) {
+    for (const Solid& solid : RandomRoom(seed, options).objects) {
+      const std::vector<std::string> donors = FootprintDonors(solid.class_name);
+      if (donors.empty() || solid.footprint.shape == Footprint::Shape::kCircle) continue;
+      ++furniture;
+      const auto [width, depth] = FootprintSize(solid);
+      const ClassSizeRange own = SizeRangeOf(solid.class_name);
+      EXPECT_GE(solid.height, own.height_min - 1e-9) << solid.class_name;
+      EXPECT_LE(solid.height, own.height_max + 1e-9) << solid.class_name;
+      bool from_a_donor = false;
+      for (const std::string& donor : donors) {
+        from_a_donor = from_a_donor || WithinRange(width, depth, SizeRangeOf(donor));
+      }
+      EXPECT_TRUE(from_a_donor) << solid.class_name << " " << width << " x " << depth;
+      if (!WithinRange(width, depth, own)) ++outside_own_range;
+    }
+  }
+  EXPECT_GT(furniture, 100);
+  EXPECT_GT(outside_own_range, furniture / 3);
+  EXPECT_TRUE(FootprintDonors("door").empty());
+  EXPECT_TRUE(FootprintDonors("computer").empty());
+  EXPECT_EQ(FootprintDonors("sofa"), (std::vector<std::string>{"cabinet", "table", "bed"}));
+}
+
+// Without borrowing, every piece of furniture keeps to its class's own footprint range.
+TEST(RandomRoomTest, ByDefaultFurnitureKeepsItsOwnSizes) {
+  for (std::uint64_t seed = 0; seed < 30; ++seed) {
+    for (const Solid& solid : RandomRoom(seed).objects) {
+      if (FootprintDonors(solid.class_name).empty()) continue;
+      if (solid.footprint.shape == Footprint::Shape::kCircle) continue;
+      const auto [width, depth] = FootprintSize(solid);
+      EXPECT_TRUE(WithinRange(width, depth, SizeRangeOf(solid.class_name)))
+          << solid.class_name << " " << width << " x " << depth;
+    }
+  }
+}
+
 // The truth box of every labelled object is the bounding box of its rendered pixels, and its
 // label line parses back to that box.
 TEST(DetectorDatasetTest, TruthBoxesBoundTheRenderedMasksAndLabelsParseBack) {
@@ -160,6 +217,12 @@ TEST(DetectorDatasetTest, BadOptionsWriteNothing) {
   const Result<DatasetSummary> zero = WriteDetectorDataset(out, options);
   ASSERT_FALSE(zero.ok());
   EXPECT_EQ(zero.status().message(), "--images must be at least 1, got 0");
+  EXPECT_FALSE(fs::exists(out));
+  options = SmallSet(1);
+  options.borrowed_footprint_fraction = 1.5;
+  const Result<DatasetSummary> share = WriteDetectorDataset(out, options);
+  ASSERT_FALSE(share.ok());
+  EXPECT_EQ(share.status().message(), "--borrowed-footprints must be 0..1, got 1.500000");
   EXPECT_FALSE(fs::exists(out));
   // A directory holding something else is not overwritten.
   fs::create_directories(out);

@@ -47,8 +47,12 @@ Footprint Grown(Footprint f, double margin) {
 // The room being furnished: its size, what stands in it and where nothing may go.
 class Furnisher {
  public:
-  Furnisher(World& world, Rng& rng, double width, double depth)
-      : world_(world), rng_(rng), width_(width), depth_(depth) {}
+  Furnisher(World& world, Rng& rng, double width, double depth, double borrowed_footprint_fraction)
+      : world_(world),
+        rng_(rng),
+        width_(width),
+        depth_(depth),
+        borrowed_footprint_fraction_(borrowed_footprint_fraction) {}
 
   // Adds a partition wall from one side part-way across the room (more occlusion).
   void MaybePartition() {
@@ -76,14 +80,15 @@ class Furnisher {
   // Tries to stand an object of 'class_name' somewhere it fits; returns its index or -1.
   int Place(const std::string& class_name) {
     const ClassSizeRange range = SizeRangeOf(class_name);
+    const ClassSizeRange footprint_range = FootprintRange(class_name);
     for (int attempt = 0; attempt < 60; ++attempt) {
       Solid solid;
       solid.class_name = class_name;
       solid.shape = ObjectShape::kParts;
       solid.texture_seed = static_cast<std::uint32_t>(rng_());
       const bool round = range.round || (class_name == "stool" && Chance(rng_, 0.5));
-      const double w = Uniform(rng_, range.width_min, range.width_max);
-      const double d = Uniform(rng_, range.depth_min, range.depth_max);
+      const double w = Uniform(rng_, footprint_range.width_min, footprint_range.width_max);
+      const double d = Uniform(rng_, footprint_range.depth_min, footprint_range.depth_max);
       solid.height = Uniform(rng_, range.height_min, range.height_max);
       solid.base_height = Uniform(rng_, range.base_min, range.base_max);
       if (round) {
@@ -252,14 +257,43 @@ class Furnisher {
 
  private:
   World& world_;
+  // The size range whose width and depth the next object of 'class_name' draws from: its own,
+  // or with RandomRoomOptions::borrowed_footprint_fraction a donor's (its height stays its own).
+  ClassSizeRange FootprintRange(const std::string& class_name) {
+    if (borrowed_footprint_fraction_ <= 0.0) return SizeRangeOf(class_name);
+    const std::vector<std::string> donors = FootprintDonors(class_name);
+    if (donors.empty() || !Chance(rng_, borrowed_footprint_fraction_)) {
+      return SizeRangeOf(class_name);
+    }
+    return SizeRangeOf(donors[UniformInt(rng_, 0, static_cast<int>(donors.size()) - 1)]);
+  }
+
   Rng& rng_;
   double width_, depth_;
+  double borrowed_footprint_fraction_;
   std::vector<Polygon> taken_;
   std::vector<int> tables_;
   std::vector<int> doors_;
 };
 
 }  // namespace
+
+std::vector<std::string> FootprintDonors(const std::string& class_name) {
+  const std::vector<std::string> small = {"bucket", "cabinet", "chair", "stool"};
+  const std::vector<std::string> large = {"cabinet", "table", "sofa", "bed"};
+  if (class_name == "cabinet") return {"bucket", "chair", "stool", "table", "sofa", "bed"};
+  for (const auto* group : {&small, &large}) {
+    for (const std::string& member : *group) {
+      if (member != class_name) continue;
+      std::vector<std::string> donors;
+      for (const std::string& other : *group) {
+        if (other != class_name) donors.push_back(other);
+      }
+      return donors;
+    }
+  }
+  return {};
+}
 
 World RandomRoom(std::uint64_t seed, const RandomRoomOptions& options) {
   Rng rng = MakeRng(seed, 0x700d);
@@ -288,7 +322,7 @@ World RandomRoom(std::uint64_t seed, const RandomRoomOptions& options) {
   world.lighting.direction =
       Eigen::Vector3d(std::cos(azimuth) * std::cos(elevation),
                       std::sin(azimuth) * std::cos(elevation), -std::sin(elevation));
-  Furnisher furnisher(world, rng, width, depth);
+  Furnisher furnisher(world, rng, width, depth, options.borrowed_footprint_fraction);
   furnisher.MaybePartition();
   // Large pieces first, while there is room; then one of every other class; then extras.
   std::vector<std::string> order = {"door",  "bed",   "sofa",  "cabinet", "table",

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/pose2.h"
@@ -18,7 +19,17 @@ struct RandomRoomOptions {
   double max_size_meters = 8.0;
   int extra_objects_max = 5;  // beyond one of each class
   int distractors_max = 4;    // non-semantic obstacles
+  // The share of furniture given the footprint range of another class of its size group
+  // (FootprintDonors): rooms put a sofa where a bed would stand, or a cabinet where a table
+  // would, so a detector trained only on each class's own sizes names objects by their size.
+  // 0 keeps every class to its own range (and every earlier seed's rooms unchanged).
+  double borrowed_footprint_fraction = 0.0;
 };
+
+// The classes whose footprint ranges an object of 'class_name' may take: small furniture
+// (bucket, cabinet, chair, stool) trade among themselves, large furniture (cabinet, table, sofa,
+// bed) too; a cabinet belongs to both. Empty for the other classes.
+std::vector<std::string> FootprintDonors(const std::string& class_name);
 
 World RandomRoom(std::uint64_t seed, const RandomRoomOptions& options = {});
 
