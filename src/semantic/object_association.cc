@@ -43,6 +43,18 @@ int FramesTogether(const ObjectPart& a, const ObjectPart& b) {
   return together;
 }
 
+bool SeenAsTwo(int together, int seen, const ObjectExtractionOptions& options) {
+  return together >= options.min_split_frames &&
+         static_cast<double>(together) >= options.min_split_share * static_cast<double>(seen);
+}
+
+bool PartsSeenAsTwo(const ObjectPart& a, const ObjectPart& b,
+                    const ObjectExtractionOptions& options) {
+  const int together = FramesTogether(a, b);
+  const int seen = static_cast<int>(a.frames.size() + b.frames.size()) - together;
+  return SeenAsTwo(together, seen, options);
+}
+
 double PartExtent(const ObjectPart& part, double resolution) {
   if (part.cells.empty()) return 0.0;
   std::vector<cv::Point2f> centers;
@@ -72,7 +84,7 @@ std::vector<ObjectPart> MergeFragments(std::vector<ObjectPart> parts, const Clas
     merged = false;
     for (std::size_t i = 0; i < parts.size() && !merged; ++i) {
       for (std::size_t j = i + 1; j < parts.size() && !merged; ++j) {
-        if (FramesTogether(parts[i], parts[j]) >= options.min_split_frames) continue;
+        if (PartsSeenAsTwo(parts[i], parts[j], options)) continue;
         if (std::min(PartExtent(parts[i], resolution), PartExtent(parts[j], resolution)) >=
                 fragment ||
             !near(parts[i], parts[j])) {
@@ -97,10 +109,10 @@ double OverlapArea(const std::vector<Eigen::Vector2d>& a, const std::vector<Eige
       0.0f, cv::intersectConvexConvex(ToCv(a, a.front()), ToCv(b, a.front()), intersection, true));
 }
 
-bool SameObject(const FittedShape& a, const FittedShape& b, int together,
+bool SameObject(const FittedShape& a, const FittedShape& b, bool seen_as_two,
                 const ClassShapePrior& prior, const ObjectExtractionOptions& options) {
   // Two detections in the same frames: the detector saw two objects.
-  if (together >= options.min_split_frames) return false;
+  if (seen_as_two) return false;
   const double distance = (a.center - b.center).norm();
   if (distance < options.merge_center_fraction * prior.HalfDiagonal()) return true;
   if (distance >= Reach(a) + Reach(b)) return false;  // the footprints cannot meet
@@ -127,7 +139,7 @@ std::vector<FittedPart> AssociateParts(std::vector<ObjectPart> parts,
         const double distance = (fitted[i].shape.center - fitted[j].shape.center).norm();
         if (distance >= best) continue;
         if (SameObject(fitted[i].shape, fitted[j].shape,
-                       FramesTogether(fitted[i].part, fitted[j].part), prior, options)) {
+                       PartsSeenAsTwo(fitted[i].part, fitted[j].part, options), prior, options)) {
           best = distance;
           best_i = i;
           best_j = j;

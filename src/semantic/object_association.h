@@ -27,6 +27,14 @@ struct ObjectPart {
 // How many frames saw both parts (a detection on each).
 int FramesTogether(const ObjectPart& a, const ObjectPart& b);
 
+// Whether 'together' frames with two detections at once, of 'seen' frames with a detection on
+// the place, show two objects there (ObjectExtractionOptions::min_split_frames, min_split_share).
+bool SeenAsTwo(int together, int seen, const ObjectExtractionOptions& options);
+
+// SeenAsTwo of two parts: the frames that saw both, of the frames that saw either.
+bool PartsSeenAsTwo(const ObjectPart& a, const ObjectPart& b,
+                    const ObjectExtractionOptions& options);
+
 // The largest extent of the part's cells (metres; cells of 'resolution' metres).
 double PartExtent(const ObjectPart& part, double resolution);
 
@@ -40,8 +48,8 @@ std::vector<ObjectPart> MergeFragments(std::vector<ObjectPart> parts, const Clas
 double OverlapArea(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b);
 
 // Whether two fitted parts of one class are one object (ObjectExtractionOptions::
-// merge_overlap, merge_center_fraction); 'together' is FramesTogether of the parts.
-bool SameObject(const FittedShape& a, const FittedShape& b, int together,
+// merge_overlap, merge_center_fraction); 'seen_as_two' is PartsSeenAsTwo of the parts.
+bool SameObject(const FittedShape& a, const FittedShape& b, bool seen_as_two,
                 const ClassShapePrior& prior, const ObjectExtractionOptions& options);
 
 // A part with its fitted shape.

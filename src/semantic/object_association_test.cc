@@ -252,6 +252,22 @@ TEST(ObjectAssociationTest, OverlapAreaOfTwoBoxes) {
             0.0);
 }
 
+TEST(ObjectAssociationTest, SeenAsTwoNeedsEnoughFramesAndEnoughOfThem) {
+  const ObjectExtractionOptions options;  // 3 frames, and a tenth of the frames
+  EXPECT_FALSE(SeenAsTwo(2, 4, options));
+  EXPECT_TRUE(SeenAsTwo(3, 4, options));
+  EXPECT_TRUE(SeenAsTwo(3, 30, options));
+  EXPECT_FALSE(SeenAsTwo(3, 31, options));
+  EXPECT_TRUE(SeenAsTwo(7, 61, options));
+  EXPECT_FALSE(SeenAsTwo(4, 61, options));
+  ObjectPart a, b;
+  for (int f = 1; f <= 17; ++f) a.frames.insert(f);
+  for (int f = 15; f <= 30; ++f) b.frames.insert(f);
+  EXPECT_TRUE(PartsSeenAsTwo(a, b, options));  // 3 together of 30 frames
+  b.frames.insert(31);
+  EXPECT_FALSE(PartsSeenAsTwo(a, b, options));  // 3 of 31
+}
+
 TEST(ObjectAssociationTest, SameObjectByOverlapOrCentreUnlessSeenTogether) {
   const ObjectExtractionOptions options;
   ClassShapePrior cabinet;  // 0.6 × 0.4: half diagonal 0.36 m
@@ -259,24 +275,24 @@ TEST(ObjectAssociationTest, SameObjectByOverlapOrCentreUnlessSeenTogether) {
   cabinet.depth = 0.4;
   // 0.4 m apart along the width: beyond the half diagonal, but a third of each overlaps.
   EXPECT_TRUE(
-      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.4, 1.0, 0.6, 0.4), 0, cabinet, options));
-  // The same, seen as two detections in min_split_frames frames: two cabinets.
-  EXPECT_FALSE(SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.4, 1.0, 0.6, 0.4),
-                          options.min_split_frames, cabinet, options));
+      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.4, 1.0, 0.6, 0.4), false, cabinet, options));
+  // The same, seen as two detections at once: two cabinets.
+  EXPECT_FALSE(
+      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.4, 1.0, 0.6, 0.4), true, cabinet, options));
   // Side by side, 0.62 m apart: two.
   EXPECT_FALSE(
-      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.62, 1.0, 0.6, 0.4), 0, cabinet, options));
+      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.62, 1.0, 0.6, 0.4), false, cabinet, options));
   // 0.4 m apart front to back: the footprints only touch, and the centres are beyond the
   // half diagonal: two.
   EXPECT_FALSE(
-      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.0, 1.4, 0.6, 0.4), 0, cabinet, options));
+      SameObject(Fitted(1.0, 1.0, 0.6, 0.4), Fitted(1.0, 1.4, 0.6, 0.4), false, cabinet, options));
   ClassShapePrior stool;  // radius 0.17: half diagonal 0.24 m
   stool.shape = ClassShapePrior::Shape::kCircle;
   stool.radius = 0.17;
   // 0.22 m apart: within the half diagonal.
-  EXPECT_TRUE(SameObject(Fitted(1.0, 1.0, 0.17), Fitted(1.22, 1.0, 0.17), 0, stool, options));
+  EXPECT_TRUE(SameObject(Fitted(1.0, 1.0, 0.17), Fitted(1.22, 1.0, 0.17), false, stool, options));
   // 0.36 m apart: apart.
-  EXPECT_FALSE(SameObject(Fitted(1.0, 1.0, 0.17), Fitted(1.36, 1.0, 0.17), 0, stool, options));
+  EXPECT_FALSE(SameObject(Fitted(1.0, 1.0, 0.17), Fitted(1.36, 1.0, 0.17), false, stool, options));
 }
 
 // Frames from viewers on an arc of 'distance' around 'target', from 'from' to 'to' radians.

@@ -217,19 +217,21 @@ DetectionsByFrame DetectionsOnRegion(const std::vector<const DetectionObservatio
   return by_frame;
 }
 
-// The part (0 .. *parts - 1) of each of the region's cells: one part, or k when at least
-// min_split_frames frames saw k objects on the region at once, split around the detections of
-// the frame with exactly k there whose detections cover most cells.
+// The part (0 .. *parts - 1) of each of the region's cells: one part, or k when the frames
+// that saw k objects on the region at once show k objects there (SeenAsTwo), split around the
+// detections of the frame with exactly k there whose detections cover most cells.
 std::vector<int> SplitAmongObjects(const std::vector<Eigen::Vector2i>& region,
                                    const DetectionsByFrame& by_frame,
                                    const ObjectExtractionOptions& o, int* parts) {
-  // k = the most objects that at least min_split_frames frames saw on the region at once.
+  // k = the most objects that enough frames saw on the region at once: the k of the n-th most
+  // crowded frame, n the fewest frames SeenAsTwo accepts.
   std::vector<int> per_frame;
   for (const auto& [frame, list] : by_frame) per_frame.push_back(static_cast<int>(list.size()));
   std::sort(per_frame.rbegin(), per_frame.rend());
-  const int k = per_frame.size() >= static_cast<std::size_t>(o.min_split_frames)
-                    ? per_frame[o.min_split_frames - 1]
-                    : 1;
+  const int seen = static_cast<int>(per_frame.size());
+  int needed = std::max(o.min_split_frames, 1);
+  while (needed <= seen && !SeenAsTwo(needed, seen, o)) ++needed;
+  const int k = needed <= seen ? per_frame[static_cast<std::size_t>(needed - 1)] : 1;
   std::vector<int> assignment(region.size(), 0);
   *parts = 1;
   if (k <= 1) return assignment;

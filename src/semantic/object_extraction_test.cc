@@ -72,6 +72,27 @@ TEST(ObjectExtractionTest, TouchingObjectsSeenTogetherAreSplit) {
   EXPECT_NEAR(x1, 0.8 + 0.15, 0.03);
 }
 
+// A real detector sees one cabinet in 40 frames and, in 3 of them, puts a second box of the
+// class on part of it (a neighbour misnamed, or a part taken for a whole): one object, not two.
+// Going by the count of such frames alone (min_split_share 0) splits it.
+TEST(ObjectExtractionTest, ASecondBoxInAFewOfManyFramesDoesNotSplitAnObject) {
+  Scene scene;
+  const auto front = Face(10, 20, 12);  // x 0.50–1.10
+  const auto part = Face(16, 20, 6);    // its right half
+  for (int i = 0; i < 37; ++i) scene.Frame({front});
+  for (int i = 0; i < 3; ++i) scene.Frame({front, part});
+  const ExtractedObjects one =
+      ExtractObjects(scene.grid, scene.observations, kClasses, SemanticMapOptions());
+  ASSERT_EQ(one.objects.size(), 1u);
+  EXPECT_NEAR(one.objects[0].center.x(), 0.525 + 0.275, 0.02);
+  EXPECT_EQ(one.objects[0].observations, 40);
+
+  SemanticMapOptions count_only;
+  count_only.extraction.min_split_share = 0.0;
+  EXPECT_EQ(ExtractObjects(scene.grid, scene.observations, kClasses, count_only).objects.size(),
+            2u);
+}
+
 TEST(ObjectExtractionTest, FragmentsOfOneObjectAreJoinedAndRareOnesDropped) {
   Scene scene;
   // The front of a cabinet, and (in other frames) a short piece of it 3 cells beyond its end,

@@ -44,6 +44,9 @@ bool SemanticMapOptions::Validate(std::string* error) const {
     return fail("extraction.occupied_probability must be in (0.5, 1)");
   }
   if (extraction.min_split_frames < 1) return fail("extraction.min_split_frames must be >= 1");
+  if (!(extraction.min_split_share >= 0.0 && extraction.min_split_share <= 1.0)) {
+    return fail("extraction.min_split_share must be in [0, 1]");
+  }
   if (extraction.merge_gap_cells < 0) return fail("extraction.merge_gap_cells must be >= 0");
   if (!(extraction.fragment_fraction >= 0.0)) {
     return fail("extraction.fragment_fraction must be >= 0");

@@ -93,16 +93,22 @@ struct ObjectExtractionOptions {
   int min_cells = 2;
   int min_observations = 3;
   // A region is split into k objects when at least this many frames show k detections of its
-  // class on it (two cabinets side by side merge on a 5 cm grid).
+  // class on it (two cabinets side by side merge on a 5 cm grid), and at least this share of
+  // the frames with a detection on it: a detector's mistakes come at a rate, so a real detector
+  // seeing a region in 60 frames gives a few frames with a second, wrong box on it (a chair in
+  // front of a desk named a table), while two objects side by side show as two in most frames
+  // that see them. 0: the count alone decides.
   int min_split_frames = 3;
+  double min_split_share = 0.1;
   // A detection is on a region when this fraction of its cells lies in it.
   double detection_overlap = 0.5;
   // Two regions of a class are one object's faces when at least 'min_bridges' detections each
   // put this fraction of their cells (and at least min_cells) on both.
   double bridge_fraction = 0.2;
   int min_bridges = 2;
-  // One object, one entry (object_association.h). Parts of a class that min_split_frames
-  // frames did not show as two detections at once are one object when:
+  // One object, one entry (object_association.h). Parts of a class that were not seen as two
+  // (SeenAsTwo: min_split_frames frames, and min_split_share of the frames that saw either,
+  // with a detection on each) are one object when:
   // - they lie within 'merge_gap_cells' of each other and the smaller spans less than
   //   'fragment_fraction' of the class prior's extent: a piece too small to be an object of the
   //   class (a face cut off by the image edge);
