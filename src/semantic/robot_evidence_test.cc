@@ -34,7 +34,8 @@ TEST(RobotEvidenceTest, ABoxHalfInsideALargerOneOfItsClassIsOneObject) {
   // The detector's box of a whole bed and a second box on its left end, two thirds of it inside.
   const BoxFrame scene;
   EXPECT_EQ(
-      scene.Detections({NamedBox("bed", 20, 140, 3.0, 0.4), NamedBox("bed", 0, 60, 3.0, 0.6)}), 1);
+      scene.Detections({NamedBox("bed", 20, 140, 3.0, 0.55), NamedBox("bed", 0, 60, 3.0, 0.75)}),
+      1);
   // Of another class it is another object.
   EXPECT_EQ(scene.Detections({NamedBox("bed", 20, 140, 3.0), NamedBox("sofa", 0, 60, 3.0)}), 2);
 }
