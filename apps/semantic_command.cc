@@ -33,6 +33,7 @@ struct SemanticArgs {
   std::string out;
   double scale = 50.0;
   DetectorArgs detector;  // a YOLOv8-format ONNX model instead of RUN/detections.jsonl
+  double min_detection_score = semantic::DetectionPointOptions().min_score;
 };
 
 Status RunSemantic(const SemanticArgs& args) {
@@ -60,8 +61,10 @@ Status RunSemantic(const SemanticArgs& args) {
   inputs.trajectory = std::move(*poses);
   inputs.trajectory_source = poses_path.string();
   std::optional<ProgressBar> progress;
-  Result<semantic::SemanticMappingResult> result = semantic::MapRun(
-      inputs, semantic::SemanticMapOptions(), [&](std::size_t done, std::size_t total) {
+  semantic::SemanticMapOptions options;
+  options.points.min_score = args.min_detection_score;
+  Result<semantic::SemanticMappingResult> result =
+      semantic::MapRun(inputs, options, [&](std::size_t done, std::size_t total) {
         if (!progress) progress.emplace("semantic mapping", total);
         progress->Update(done);
       });
@@ -99,6 +102,9 @@ void AddSemanticCommand(CLI::App& app, int& exit_code) {
   command->add_option("--out", args->out, "Output directory (usually the map directory)")
       ->required();
   AddDetectorOptions(command, &args->detector, "reading RUN/detections.jsonl");
+  command->add_option("--min-detection-score", args->min_detection_score, kMinDetectionScoreHelp)
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   command->add_option("--scale", args->scale, "Pixels per metre of semantic.png")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1000.0));

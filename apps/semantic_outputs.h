@@ -22,6 +22,12 @@ struct DetectorArgs {
   std::string input = "auto";  // the model's own (a static export's size), else 640x640
 };
 
+// --help of --min-detection-score (`semantic`, `slam --semantic`).
+inline constexpr const char* kMinDetectionScoreHelp =
+    "Detections scoring lower do not enter the semantic map. The default is the default "
+    "model's confidence at its best F1 on a validation split; for a model of your own, take its "
+    "confidence_at_best_f1 from `semchain bench detector --split val`";
+
 // Adds --detector, --classes, --class-map and --detector-input to 'command'; 'what' says what the
 // model's detections replace (for --help).
 void AddDetectorOptions(CLI::App* command, DetectorArgs* args, const std::string& what);

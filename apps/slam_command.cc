@@ -342,6 +342,12 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
       "Network input WIDTHxHEIGHT of --detector (multiples of 32), or auto: its export size");
   command->add_option("--scale", args->semantic.scale, "Pixels per metre of semantic.png")
       ->check(CLI::Range(1.0, 1000.0));
+  command
+      ->add_option("--min-detection-score", args->semantic.min_detection_score,
+                   kMinDetectionScoreHelp)
+      ->needs(semantic)
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   command->add_option("--max-scans", args->max_scans, "Use only the first N scans of the log")
       ->check(CLI::PositiveNumber);
   command->add_flag("--raw-odometry", args->raw_odometry,

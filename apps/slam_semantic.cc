@@ -97,8 +97,10 @@ Result<std::unique_ptr<SlamSemantic>> SlamSemantic::Open(const SlamSemanticArgs&
   // The SLAM grid's lattice: OccupancyGrid cells from the origin (0, 0).
   semantic::GridGeometry lattice;
   lattice.resolution = resolution;
+  semantic::LiveSemanticOptions options;
+  options.map.points.min_score = args.min_detection_score;
   Result<std::unique_ptr<semantic::LiveSemanticRun>> live = semantic::LiveSemanticRun::Open(
-      args.run, detections, lattice, semantic::LiveSemanticOptions(),
+      args.run, detections, lattice, options,
       [](const std::string& line) { spdlog::warn("slam --semantic: {}", line); });
   if (!live.ok()) return live.status();
   return std::unique_ptr<SlamSemantic>(new SlamSemantic(args, std::move(*live)));

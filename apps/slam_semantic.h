@@ -18,6 +18,8 @@ struct SlamSemanticArgs {
   std::string run;  // empty: no semantic mapping
   DetectorArgs detector;
   double scale = 50.0;  // pixels per metre of semantic.png
+  // Detections scoring lower do not enter the map (DetectionPointOptions::min_score).
+  double min_detection_score = semantic::DetectionPointOptions().min_score;
 };
 
 class SlamSemantic {
