@@ -203,9 +203,11 @@ void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
     // The semantic grid numbers its cells on the SLAM grid's lattice (cells from the origin).
     semantic::GridGeometry lattice;
     lattice.resolution = parameters_.slam.rbpf.grid.resolution_meters;
-    Result<std::unique_ptr<semantic::LiveSemanticRun>> created = semantic::LiveSemanticRun::Create(
-        *camera, DefaultClassNames(), lattice, semantic::LiveSemanticOptions(), Warn,
-        detector_ ? "camera" : "/semchain/detections");
+    semantic::LiveSemanticOptions options;
+    options.map.points.min_score = parameters_.min_detection_score;
+    Result<std::unique_ptr<semantic::LiveSemanticRun>> created =
+        semantic::LiveSemanticRun::Create(*camera, DefaultClassNames(), lattice, options, Warn,
+                                          detector_ ? "camera" : "/semchain/detections");
     if (!created.ok()) {
       ROS_ERROR_THROTTLE(5.0, "semchain_ros: %s", created.status().message().c_str());
       return;

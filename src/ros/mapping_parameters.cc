@@ -18,6 +18,7 @@ Status ReadChecked(const ::ros::NodeHandle& nh, const std::string& name, double*
 
 bool Positive(double v) { return v > 0.0; }
 bool NonNegative(double v) { return v >= 0.0; }
+bool UnitInterval(double v) { return v >= 0.0 && v <= 1.0; }
 bool Fraction(double v) { return v > 0.0 && v <= 1.0; }
 
 // slam_gmapping's names for what semchain's SLAM has too.
@@ -76,6 +77,8 @@ Result<MappingNodeParameters> ReadMappingNodeParameters(const ::ros::NodeHandle&
   }
   SEMCHAIN_RETURN_IF_ERROR(
       ReadChecked(nh, "camera_max_range", &p.camera_max_range, Positive, "> 0 (metres)"));
+  SEMCHAIN_RETURN_IF_ERROR(
+      ReadChecked(nh, "min_detection_score", &p.min_detection_score, UnitInterval, "in [0, 1]"));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "stats_file", &p.stats_file));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "save_on_shutdown", &p.save_on_shutdown));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "keyframe_images", &p.keyframe_images));
@@ -100,12 +103,13 @@ std::string DescribeMappingParameters(const MappingNodeParameters& p) {
       line, sizeof(line),
       "slam_config %s, particles %d, delta %.3g m, maxUrange %.3g m, linearUpdate %.3g m, "
       "angularUpdate %.3g rad, resampleThreshold %.3g, map_update_interval %.3g s, "
-      "frames %s/%s/%s, keyframe_images %s, save_on_shutdown %s, seed %llu, threads %d",
+      "frames %s/%s/%s, keyframe_images %s, min_detection_score %.3g, save_on_shutdown %s, "
+      "seed %llu, threads %d",
       p.slam_config.empty() ? "(defaults)" : p.slam_config.c_str(), rbpf.particles,
       rbpf.grid.resolution_meters, rbpf.scan.max_range_meters, rbpf.linear_update_meters,
       rbpf.angular_update_radians, rbpf.resample_threshold, p.map_update_interval,
       p.frames.global_frame_id.c_str(), p.frames.odom_frame_id.c_str(),
-      p.frames.base_frame_id.c_str(), p.keyframe_images ? "true" : "false",
+      p.frames.base_frame_id.c_str(), p.keyframe_images ? "true" : "false", p.min_detection_score,
       p.save_on_shutdown ? "true" : "false", static_cast<unsigned long long>(rbpf.seed),
       rbpf.threads);
   return line;

@@ -7,6 +7,7 @@
 #include "core/status.h"
 #include "mapping/slam_options.h"
 #include "ros/node_inputs.h"
+#include "semantic/semantic_options.h"
 
 // The private parameters of semchain_ros in mapping mode. Where slam_gmapping has a parameter
 // of the same meaning it has the same name: particles, delta (the map's resolution),
@@ -16,11 +17,14 @@
 namespace semchain::ros1 {
 
 struct MappingNodeParameters {
-  std::string out;                   // ~out: the map folder /semchain/save_map writes (required)
-  std::string slam_config;           // ~slam_config: SLAM options YAML (as `slam --config`)
-  std::string detector;              // ~detector: ONNX model; empty: the detections topic
-  std::string class_map;             // ~class_map: ~detector's classes mapped to semchain's
-  double camera_max_range = 6.0;     // ~camera_max_range: depth beyond is no reading
+  std::string out;                // ~out: the map folder /semchain/save_map writes (required)
+  std::string slam_config;        // ~slam_config: SLAM options YAML (as `slam --config`)
+  std::string detector;           // ~detector: ONNX model; empty: the detections topic
+  std::string class_map;          // ~class_map: ~detector's classes mapped to semchain's
+  double camera_max_range = 6.0;  // ~camera_max_range: depth beyond is no reading
+  // ~min_detection_score: detections scoring lower do not enter the semantic map (as
+  // `slam --semantic --min-detection-score`).
+  double min_detection_score = semantic::DetectionPointOptions().min_score;
   std::string stats_file;            // ~stats_file: CPU and latency JSON at exit
   NodeFrames frames;                 // ~base_frame, ~odom_frame, ~map_frame, ~tf_wait
   double map_update_interval = 5.0;  // s of scan time between two /map publications
