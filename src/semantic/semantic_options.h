@@ -63,9 +63,9 @@ struct DetectionPointOptions {
   double max_depth_gate = 1.0;
   // Every 'pixel_stride'-th pixel in both directions is used.
   int pixel_stride = 1;
-  // Detections with a lower score are ignored. A detector's confidence at its best F1 on its
-  // validation split is where its boxes stop being right more often than not; the default
-  // model's is 0.47 (`semchain bench detector --split val`), and below it the map gains few
+  // Detections with a lower score are ignored. Below a detector's confidence at its best F1 on
+  // its validation split, lowering the bar costs it more precision than it gains recall; the
+  // default model's is 0.47 (`semchain bench detector --split val`), and below it the map gains few
   // objects and many misnamed ones (docs/results.md, "From pixels"). The detector itself keeps
   // its lower threshold (0.25) for the frames it shows.
   double min_score = 0.45;
