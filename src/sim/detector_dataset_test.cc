@@ -102,6 +102,8 @@ TEST(RandomRoomTest, BorrowedFootprintsComeFromTheSizeGroup) {
   EXPECT_TRUE(FootprintDonors("door").empty());
   EXPECT_TRUE(FootprintDonors("computer").empty());
   EXPECT_EQ(FootprintDonors("sofa"), (std::vector<std::string>{"cabinet", "table", "bed"}));
+  EXPECT_EQ(FootprintDonors("cabinet"),
+            (std::vector<std::string>{"bucket", "chair", "stool", "table", "sofa", "bed"}));
 }
 
 // Without borrowing, every piece of furniture keeps to its class's own footprint range.

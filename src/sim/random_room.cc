@@ -279,20 +279,16 @@ class Furnisher {
 }  // namespace
 
 std::vector<std::string> FootprintDonors(const std::string& class_name) {
-  const std::vector<std::string> small = {"bucket", "cabinet", "chair", "stool"};
-  const std::vector<std::string> large = {"cabinet", "table", "sofa", "bed"};
-  if (class_name == "cabinet") return {"bucket", "chair", "stool", "table", "sofa", "bed"};
-  for (const auto* group : {&small, &large}) {
-    for (const std::string& member : *group) {
-      if (member != class_name) continue;
-      std::vector<std::string> donors;
-      for (const std::string& other : *group) {
-        if (other != class_name) donors.push_back(other);
-      }
-      return donors;
+  const std::vector<std::vector<std::string>> groups = {{"bucket", "cabinet", "chair", "stool"},
+                                                        {"cabinet", "table", "sofa", "bed"}};
+  std::vector<std::string> donors;
+  for (const std::vector<std::string>& group : groups) {
+    if (std::find(group.begin(), group.end(), class_name) == group.end()) continue;
+    for (const std::string& other : group) {
+      if (other != class_name) donors.push_back(other);
     }
   }
-  return {};
+  return donors;
 }
 
 World RandomRoom(std::uint64_t seed, const RandomRoomOptions& options) {
