@@ -109,15 +109,26 @@ double OverlapArea(const std::vector<Eigen::Vector2d>& a, const std::vector<Eige
       0.0f, cv::intersectConvexConvex(ToCv(a, a.front()), ToCv(b, a.front()), intersection, true));
 }
 
+namespace {
+
+// The overlap of two footprints as a fraction of the smaller one's area (0 when either is
+// degenerate).
+double OverlapOfSmaller(const FittedShape& a, const FittedShape& b) {
+  if ((a.center - b.center).norm() >= Reach(a) + Reach(b)) return 0.0;
+  const double smaller = std::min(Area(a.footprint), Area(b.footprint));
+  return smaller > 0.0 ? OverlapArea(a.footprint, b.footprint) / smaller : 0.0;
+}
+
+}  // namespace
+
 bool SameObject(const FittedShape& a, const FittedShape& b, bool seen_as_two,
                 const ClassShapePrior& prior, const ObjectExtractionOptions& options) {
   // Two detections in the same frames: the detector saw two objects.
   if (seen_as_two) return false;
-  const double distance = (a.center - b.center).norm();
-  if (distance < options.merge_center_fraction * prior.HalfDiagonal()) return true;
-  if (distance >= Reach(a) + Reach(b)) return false;  // the footprints cannot meet
-  const double smaller = std::min(Area(a.footprint), Area(b.footprint));
-  return smaller > 0.0 && OverlapArea(a.footprint, b.footprint) >= options.merge_overlap * smaller;
+  if ((a.center - b.center).norm() < options.merge_center_fraction * prior.HalfDiagonal()) {
+    return true;
+  }
+  return OverlapOfSmaller(a, b) >= options.merge_overlap;
 }
 
 std::vector<FittedPart> AssociateParts(std::vector<ObjectPart> parts,
@@ -156,6 +167,48 @@ std::vector<FittedPart> AssociateParts(std::vector<ObjectPart> parts,
     fitted.erase(fitted.begin() + static_cast<long>(best_j));
   }
   return fitted;
+}
+
+namespace {
+
+// Whether 'a' is the stronger name of the object: seen in more frames, then on more cells.
+bool Outweighs(const ObjectPart& a, const ObjectPart& b) {
+  if (a.frames.size() != b.frames.size()) return a.frames.size() > b.frames.size();
+  return a.cells.size() >= b.cells.size();
+}
+
+}  // namespace
+
+bool OneObjectTwoNames(const ClassedPart& a, const ClassedPart& b,
+                       const ObjectExtractionOptions& options) {
+  return a.class_id != b.class_id && options.merge_across_classes <= 1.0 &&
+         !PartsSeenAsTwo(a.fitted.part, b.fitted.part, options) &&
+         OverlapOfSmaller(a.fitted.shape, b.fitted.shape) >= options.merge_across_classes;
+}
+
+std::vector<std::size_t> ResolveClassConflicts(const std::vector<ClassedPart>& parts,
+                                               const ObjectExtractionOptions& options) {
+  std::vector<bool> dropped(parts.size(), false);
+  while (true) {
+    std::size_t loser = parts.size();
+    double best = -1.0;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      for (std::size_t j = i + 1; j < parts.size(); ++j) {
+        if (dropped[i] || dropped[j] || !OneObjectTwoNames(parts[i], parts[j], options)) continue;
+        const double overlap = OverlapOfSmaller(parts[i].fitted.shape, parts[j].fitted.shape);
+        if (overlap <= best) continue;
+        best = overlap;
+        loser = Outweighs(parts[i].fitted.part, parts[j].fitted.part) ? j : i;
+      }
+    }
+    if (loser == parts.size()) break;
+    dropped[loser] = true;
+  }
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (!dropped[i]) kept.push_back(i);
+  }
+  return kept;
 }
 
 }  // namespace semchain::semantic

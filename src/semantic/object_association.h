@@ -65,4 +65,25 @@ std::vector<FittedPart> AssociateParts(std::vector<ObjectPart> parts,
                                        const ClassShapePrior& prior,
                                        const ObjectExtractionOptions& options);
 
+// A fitted part of class 'class_id'.
+struct ClassedPart {
+  int class_id = 0;
+  FittedPart fitted;
+};
+
+// Whether two fitted parts of different classes are one object that the detector named two
+// ways (ObjectExtractionOptions::merge_across_classes): their footprints overlap by at least
+// that fraction of the smaller, and frames did not show both (SeenAsTwo). An object stands on
+// another (a computer on a desk) or beside it (a stool at a table) in view of both, so the
+// detector reports the two in the same frames; one object named a bed from one side and a sofa
+// from another is reported once a frame, now by one class, now by the other.
+bool OneObjectTwoNames(const ClassedPart& a, const ClassedPart& b,
+                       const ObjectExtractionOptions& options);
+
+// Keeps one entry of each object named two ways (OneObjectTwoNames): of such a pair the name
+// seen in more frames (more cells on a tie) wins and the other part is dropped, pairs of
+// largest overlap first. Returns the indices of 'parts' kept, in order.
+std::vector<std::size_t> ResolveClassConflicts(const std::vector<ClassedPart>& parts,
+                                               const ObjectExtractionOptions& options);
+
 }  // namespace semchain::semantic

@@ -190,8 +190,11 @@ class NoisyScene {
     ++frames_;
   }
 
-  ExtractedObjects Extract() const {
-    return ExtractObjects(grid, observations, kClasses, SemanticMapOptions());
+  // From the next frame on, the detector names object 'index' 'class_id'.
+  void Rename(std::size_t index, int class_id) { objects_[index].first = class_id; }
+
+  ExtractedObjects Extract(const SemanticMapOptions& options = {}) const {
+    return ExtractObjects(grid, observations, kClasses, options);
   }
 
   SemanticGrid grid{kGeometry, static_cast<int>(kClasses.size()), SemanticGridOptions()};
@@ -385,6 +388,82 @@ TEST(ObjectAssociationTest, TwoStoolsSeenFromBothSidesStayTwo) {
     EXPECT_GE(stools[0].observations, 9) << "seed " << seed;
     EXPECT_GE(stools[1].observations, 9) << "seed " << seed;
   }
+}
+
+// A part of 'class_id' with 'shape', detected in frames first .. last.
+ClassedPart PartOf(int class_id, const FittedShape& shape, int first, int last) {
+  ClassedPart part{class_id, {}};
+  part.fitted.shape = shape;
+  for (int f = first; f <= last; ++f) part.fitted.part.frames.insert(f);
+  part.fitted.part.cells.assign(static_cast<std::size_t>(last - first + 1), Eigen::Vector2i(0, 0));
+  return part;
+}
+
+TEST(ObjectAssociationTest, OneObjectTwoNamesByOverlapUnlessSeenTogether) {
+  const ObjectExtractionOptions options;  // half of the smaller footprint
+  // A 0.5 m chair's fit and a stool's fit 0.1 m off it, never in the same frame: one object.
+  const ClassedPart chair = PartOf(kChair, Fitted(1.0, 1.0, 0.5, 0.5), 0, 9);
+  EXPECT_TRUE(OneObjectTwoNames(chair, PartOf(kStool, Fitted(1.1, 1.0, 0.17), 10, 14), options));
+  // The same with both in three of the fifteen frames: the detector saw two objects there (a
+  // computer on a desk).
+  EXPECT_FALSE(OneObjectTwoNames(chair, PartOf(kStool, Fitted(1.1, 1.0, 0.17), 7, 14), options));
+  // A stool at the chair's side, a third of it under the chair's fit: two.
+  EXPECT_FALSE(OneObjectTwoNames(chair, PartOf(kStool, Fitted(1.35, 1.0, 0.17), 10, 14), options));
+  // One class: AssociateParts' concern, not this.
+  EXPECT_FALSE(
+      OneObjectTwoNames(chair, PartOf(kChair, Fitted(1.1, 1.0, 0.5, 0.5), 10, 14), options));
+  ObjectExtractionOptions off;
+  off.merge_across_classes = 2.0;
+  EXPECT_FALSE(OneObjectTwoNames(chair, PartOf(kStool, Fitted(1.1, 1.0, 0.17), 10, 14), off));
+}
+
+TEST(ObjectAssociationTest, TheNameSeenInMoreFramesIsKept) {
+  const ObjectExtractionOptions options;
+  const std::vector<ClassedPart> parts = {
+      PartOf(kStool, Fitted(1.1, 1.0, 0.17), 10, 14),       // 5 frames
+      PartOf(kChair, Fitted(1.0, 1.0, 0.5, 0.5), 0, 9),     // 10 frames: kept
+      PartOf(kStool, Fitted(3.0, 1.0, 0.17), 20, 22),       // elsewhere: kept
+      PartOf(kChair, Fitted(3.05, 1.0, 0.5, 0.5), 23, 24),  // 2 frames against its 3
+  };
+  EXPECT_EQ(ResolveClassConflicts(parts, options), (std::vector<std::size_t>{1, 2}));
+}
+
+TEST(ObjectAssociationTest, ChairNamedStoolFromOneSideIsOneChair) {
+  // A chair that the detector names a chair from the south (8 frames) and a stool from the
+  // north (5 frames): one object, a chair. Without the rule: a chair and a stool on one spot.
+  const Shape chair = Box(2.5, 2.5, 0.5, 0.5);
+  SemanticMapOptions per_class;
+  per_class.extraction.merge_across_classes = 2.0;
+  for (std::uint32_t seed = 1; seed <= kSeeds; ++seed) {
+    NoisyScene scene({{kChair, chair}}, seed);
+    SeeFromArc(scene, chair.center, 1.3, -1.9, -1.25, 8);
+    scene.Rename(0, kStool);
+    SeeFromArc(scene, chair.center, 1.3, 1.35, 1.8, 5, 0.5 * kDrift);
+    const ExtractedObjects objects = scene.Extract();
+    if (objects.objects.size() != 1u) {
+      ADD_FAILURE() << "seed " << seed << ": " << objects.objects.size()
+                    << " objects:" << Describe(objects.objects);
+      continue;
+    }
+    EXPECT_EQ(objects.objects[0].class_name, "chair") << "seed " << seed;
+    EXPECT_LT((objects.objects[0].center - chair.center).norm(), 0.12) << "seed " << seed;
+    EXPECT_EQ(scene.Extract(per_class).objects.size(), 2u) << "seed " << seed;
+  }
+}
+
+TEST(ObjectAssociationTest, EvidenceAlongMetresOfWallIsNoObject) {
+  // A detector that names a 4 m long, low cupboard front a chair in every frame (seen whole
+  // from 4 m away): the chair layer fills along 4 m, eight times a chair's size; no chair is
+  // mapped there. A 1 m bench (twice a chair's size) named a chair stays an object.
+  SemanticMapOptions unbounded;
+  unbounded.extraction.max_extent_factor = 100.0;
+  NoisyScene wall({{kChair, Box(2.5, 4.5, 4.0, 0.3)}}, 3);
+  for (int i = 0; i < 8; ++i) wall.Frame({2.15 + 0.1 * i, 0.3}, {2.15 + 0.1 * i, 4.5});
+  EXPECT_EQ(wall.Extract().objects.size(), 0u) << Describe(wall.Extract().objects);
+  EXPECT_EQ(wall.Extract(unbounded).objects.size(), 1u);
+  NoisyScene bench({{kChair, Box(2.5, 3.5, 1.0, 0.4)}}, 3);
+  for (int i = 0; i < 8; ++i) bench.Frame({2.0 + 0.15 * i, 1.5}, {2.5, 3.5});
+  EXPECT_EQ(bench.Extract().objects.size(), 1u) << Describe(bench.Extract().objects);
 }
 
 }  // namespace

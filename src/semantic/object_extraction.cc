@@ -333,6 +333,7 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
   const double threshold = LogitOf(o.occupied_probability);
   ExtractedObjects result;
   result.observation_object.assign(observations.size(), -1);
+  std::vector<ClassedPart> classed;
   for (int c = 0; c < grid.class_count(); ++c) {
     const ClassShapePrior prior = options.PriorOf(classes[c]);
     std::vector<ObjectPart> parts = MergeFragments(ClassPieces(grid, c, threshold, observations, o),
@@ -346,12 +347,19 @@ ExtractedObjects ExtractObjects(const SemanticGrid& grid,
       return FitPart(grid, c, part, prior,
                      o.faces_on_walls ? laser_map : LaserMapCells{laser_map.free, cv::Mat()});
     };
-    for (const FittedPart& fitted : AssociateParts(std::move(parts), fit, prior, o)) {
-      SemanticObject object =
-          ObjectOf(fitted, grid, c, classes[c], static_cast<int>(result.objects.size()));
-      for (std::size_t j : fitted.part.members) result.observation_object[j] = object.id;
-      result.objects.push_back(std::move(object));
+    // A shape far larger than an object of the class was fitted to evidence that no one object
+    // left.
+    const double max_extent = o.max_extent_factor * prior.Extent();
+    for (FittedPart& fitted : AssociateParts(std::move(parts), fit, prior, o)) {
+      if (ShapeExtent(fitted.shape) <= max_extent) classed.push_back({c, std::move(fitted)});
     }
+  }
+  for (std::size_t k : ResolveClassConflicts(classed, o)) {
+    const auto& [c, fitted] = classed[k];
+    SemanticObject object =
+        ObjectOf(fitted, grid, c, classes[c], static_cast<int>(result.objects.size()));
+    for (std::size_t j : fitted.part.members) result.observation_object[j] = object.id;
+    result.objects.push_back(std::move(object));
   }
   return result;
 }

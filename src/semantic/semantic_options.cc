@@ -55,6 +55,12 @@ bool SemanticMapOptions::Validate(std::string* error) const {
     return fail("extraction.merge_center_fraction must be >= 0");
   }
   if (!(extraction.merge_overlap > 0.0)) return fail("extraction.merge_overlap must be positive");
+  if (!(extraction.max_extent_factor >= 1.0)) {
+    return fail("extraction.max_extent_factor must be at least 1");
+  }
+  if (!(extraction.merge_across_classes > 0.0)) {
+    return fail("extraction.merge_across_classes must be positive");
+  }
   if (!(chain.doorway_half_width > 0.0)) return fail("chain.doorway_half_width must be positive");
   if (chain.neighbours < 0) return fail("chain.neighbours must not be negative");
   for (const auto& [name, prior] : priors) {

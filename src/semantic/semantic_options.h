@@ -6,7 +6,7 @@
 #include <string>
 
 // The settings of semantic mapping (DESIGN.md §3.4–3.5), with the defaults used by
-// `semchain semantic`; config/semantic.yaml lists the same values.
+// `semchain semantic`, `slam --semantic` and the node; they are set here, not read from a file.
 namespace semchain::semantic {
 
 // The footprint a class of object usually has; it completes objects seen from one side only
@@ -96,6 +96,11 @@ struct ObjectExtractionOptions {
   // Regions smaller than this (cells) or seen in fewer frames are noise.
   int min_cells = 2;
   int min_observations = 3;
+  // A shape fitted larger than this many times the class prior's extent is not one object: a
+  // detector that takes a corridor for a bed, frame after frame, paints the bed layer along
+  // metres of wall. Real objects of a class differ in size, but by less than three times the
+  // typical one (a 1.8 m wardrobe against a 0.6 m cabinet, a double door, a long table).
+  double max_extent_factor = 3.0;
   // A region is split into k objects when at least this many frames show k detections of its
   // class on it (two cabinets side by side merge on a 5 cm grid), and at least this share of
   // the frames with a detection on it: a detector's mistakes come at a rate, so a real detector
@@ -130,6 +135,14 @@ struct ObjectExtractionOptions {
   double fragment_fraction = 0.5;
   double merge_center_fraction = 1.0;
   double merge_overlap = 0.25;
+  // One object, one name (OneObjectTwoNames): parts of two classes whose footprints overlap by
+  // at least this fraction of the smaller, not seen as two, are one object; the name seen in
+  // more frames is kept. A detector names one object differently from different sides (a sofa
+  // as big as a bed, a door as a cabinet). Stricter than 'merge_overlap': each part's shape is
+  // completed from its own class's prior, so the fits of one object under two names are offset
+  // by up to half their difference in size, and those of two neighbours can overlap by as
+  // much. Above 1: every class layer keeps its objects.
+  double merge_across_classes = 0.5;
   // A face lying on a wall of the laser map is the back of an object standing in front of it
   // (shape_fit.h): a chair's back against the wall, seen from the room, whose fit behind the
   // face put it beyond the wall. false: every face is taken for the object's front.

@@ -388,4 +388,8 @@ FittedShape FitShape(const std::vector<Eigen::Vector2d>& points, const std::vect
              : FitBox(points, scaled, view_direction, prior, free_points, occupied_points);
 }
 
+double ShapeExtent(const FittedShape& shape) {
+  return shape.radius > 0.0 ? 2.0 * shape.radius : std::max(shape.width, shape.depth);
+}
+
 }  // namespace semchain::semantic

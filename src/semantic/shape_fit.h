@@ -25,6 +25,9 @@ struct FittedShape {
   double rms_residual = 0.0;               // metres
 };
 
+// The largest horizontal extent of a fitted shape (metres).
+double ShapeExtent(const FittedShape& shape);
+
 // 'points': the observed surface (cell centres), with 'weights' (same size; e.g. evidence);
 // 'view_direction': unit vector from the object towards where it was seen from (zero when
 // unknown); 'free_points': centres of cells known to be free space near the object (the laser
