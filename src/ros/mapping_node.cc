@@ -155,8 +155,8 @@ void MappingNode::OnScan(const sensor_msgs::LaserScanConstPtr& message) {
 
 void MappingNode::Feed(const StampedScan& scan) {
   const mapping::SlamStep step = slam_.AddScan(scan);
-  trajectory_ = slam_.Trajectory();
   const std::lock_guard<std::mutex> lock(mutex_);
+  trajectory_ = slam_.Trajectory();
   if (!semantic_) return;
   // As `slam --semantic` does: frames wait for a pose; a filter update may move mapped ones.
   if (!step.processed && semantic_->next_stamp() > scan.scan.timestamp) return;
@@ -217,6 +217,12 @@ void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
   const cv::Mat depth =
       depth_m.empty() ? semantic::DepthFromBoxes(frame.detections, camera->intrinsics) : depth_m;
   semantic_->AddFrame(std::move(frame), depth);
+  // A frame the detector hands over after the scans of its time were fed (the detector is
+  // slower than the scans, or the bag has ended) is mapped now: no later scan may come to map it.
+  if (!trajectory_.empty() && semantic_->next_stamp() <= trajectory_.back().timestamp) {
+    const Status advanced = semantic_->Advance(trajectory_, false, {});
+    if (!advanced.ok()) ROS_ERROR("semchain_ros: %s", advanced.message().c_str());
+  }
 }
 
 void MappingNode::OnDetections(const std_msgs::StringConstPtr& message) {

@@ -126,7 +126,9 @@ class MappingNode {
   ::ros::Publisher objects_publisher_;
   ::ros::ServiceServer save_service_;
 
-  std::vector<StampedPose> trajectory_;  // SLAM's best so far, one pose per scan
+  // SLAM's best so far, one pose per scan; written with mutex_ held (the detector's thread reads
+  // it).
+  std::vector<StampedPose> trajectory_;
   std::optional<double> last_map_stamp_;
   std::optional<::ros::WallTime> first_scan_wall_;
   std::size_t published_objects_ = 0;
