@@ -303,7 +303,7 @@ def score(args: argparse.Namespace) -> int:
     }
     if stats:
         result["node"] = {key: stats.get(key) for key in (
-            "scans", "dropped_scans", "scans_with_pose", "poses_published", "state",
+            "scans", "dropped_scans", "rescued_scans", "scans_with_pose", "poses_published", "state",
             "latency_ms", "pose_latency_ms", "processing_ms", "tf_wait_ms", "cpu_ms_per_scan")}
         # Poses the node published that never arrived (its /amcl_pose queue holds 2: a recorder
         # starved of CPU at a high --rate loses some).

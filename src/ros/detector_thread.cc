@@ -46,4 +46,15 @@ void DetectorThread::Stop() {
   running_ = false;
 }
 
+bool DetectorThread::RunQueued(double timeout_seconds) {
+  if (running_) return false;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  while (!queue_.isEmpty()) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    queue_.callOne(::ros::WallDuration(0.0));
+  }
+  return true;
+}
+
 }  // namespace semchain::ros1

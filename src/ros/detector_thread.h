@@ -27,6 +27,10 @@ class DetectorThread {
   // Stops the thread once the callback it runs has returned; callbacks still queued are not
   // run. Call before destroying what the callbacks use.
   void Stop();
+  // Runs the callbacks queued now on the calling thread, the thread stopped (after Stop), for
+  // at most 'timeout_seconds' of wall time: at shutdown, the images that arrived after the
+  // last save are still mapped. Returns whether the queue was emptied.
+  bool RunQueued(double timeout_seconds);
 
  private:
   ::ros::CallbackQueue queue_;

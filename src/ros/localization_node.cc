@@ -300,6 +300,7 @@ Status LocalizationNode::WriteStats() const {
       {"method", parameters_.method},
       {"scans", statistics.scans},
       {"dropped_scans", timings_.dropped_scans + (scan_input_ ? scan_input_->dropped() : 0)},
+      {"rescued_scans", scan_input_ ? scan_input_->rescued() : 0},
       {"scans_with_pose", timings_.scans_with_pose},
       {"poses_published", timings_.poses_published},
       {"publish_pose_every_scan", parameters_.publish_pose_every_scan},

@@ -341,8 +341,15 @@ bool MappingNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
 void MappingNode::Shutdown() {
   if (shut_down_) return;
   shut_down_ = true;
-  // Nothing runs beside what follows (roscpp has dropped the callbacks still queued).
-  if (detector_thread_) detector_thread_->Stop();
+  // Nothing runs beside what follows (roscpp has dropped the callbacks still queued on the main
+  // queue); the images already on the detector's queue are still mapped.
+  if (detector_thread_) {
+    detector_thread_->Stop();
+    if (!detector_thread_->RunQueued(kDetectorDrainSeconds)) {
+      ROS_WARN("semchain_ros: shutting down with frames not yet detected after %.0f s",
+               kDetectorDrainSeconds);
+    }
+  }
   // A map saved since the last scan and frame is what a save now would write (the final passes
   // take seconds).
   const bool saved_already = saved_at_ == std::pair(slam_.size(), MappedFrames());
@@ -364,6 +371,7 @@ Status MappingNode::WriteStats() const {
       {"scans", slam_.size()},
       {"processed", slam_.filter().statistics().processed},
       {"dropped_scans", timings_.dropped_scans + (scan_input_ ? scan_input_->dropped() : 0)},
+      {"rescued_scans", scan_input_ ? scan_input_->rescued() : 0},
       {"rejected_scans", timings_.rejected_scans},
       {"frames_mapped", MappedFrames()},
       {"frames_skipped", semantic_ ? semantic_->skipped_frames() : 0},

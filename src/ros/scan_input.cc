@@ -11,7 +11,11 @@ namespace semchain::ros1 {
 
 ScanInput::ScanInput(::ros::NodeHandle nh, const std::string& topic, std::uint32_t queue_size,
                      tf2_ros::Buffer& buffer, const std::string& odom_frame, Callback callback)
-    : nh_(nh), callback_(std::move(callback)), subscriber_(nh, topic, queue_size) {
+    : nh_(nh),
+      buffer_(buffer),
+      odom_frame_(odom_frame),
+      callback_(std::move(callback)),
+      subscriber_(nh, topic, queue_size) {
   // Registered before the filter connects to the subscriber: the arrival is noted before the
   // filter can release or drop the scan.
   subscriber_.registerCallback(&ScanInput::OnArrival, this);
@@ -23,6 +27,8 @@ ScanInput::ScanInput(::ros::NodeHandle nh, const std::string& topic, std::uint32
              tf2_ros::filter_failure_reasons::FilterFailureReason reason) {
         OnDropped(scan, reason);
       });
+  rescue_timer_ = nh_.createWallTimer(::ros::WallDuration(kRescueSeconds),
+                                      [this](const ::ros::WallTimerEvent&) { Flush(); });
 }
 
 ScanInput::Entry* ScanInput::Waiting(const ::ros::Time& stamp) {
@@ -34,7 +40,7 @@ ScanInput::Entry* ScanInput::Waiting(const ::ros::Time& stamp) {
 
 void ScanInput::OnArrival(const sensor_msgs::LaserScanConstPtr& scan) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  entries_.push_back({scan->header.stamp, ::ros::WallTime::now(), State::kWaiting, nullptr, {}});
+  entries_.push_back({scan->header.stamp, ::ros::WallTime::now(), State::kWaiting, scan, {}});
 }
 
 void ScanInput::OnReleased(const sensor_msgs::LaserScanConstPtr& scan) {
@@ -42,9 +48,12 @@ void ScanInput::OnReleased(const sensor_msgs::LaserScanConstPtr& scan) {
   bool noted = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
+    if (std::find(rescued_stamps_.begin(), rescued_stamps_.end(), scan->header.stamp) !=
+        rescued_stamps_.end()) {
+      return;  // released here already
+    }
     if (Entry* entry = Waiting(scan->header.stamp)) {
       entry->state = State::kReleased;
-      entry->scan = scan;
       entry->released = now;
       noted = true;
     }
@@ -69,12 +78,30 @@ void ScanInput::OnDropped(const sensor_msgs::LaserScanConstPtr& scan,
                     scan->header.stamp.toSec(), scan->header.frame_id.c_str(), why);
 }
 
+void ScanInput::Rescue(const ::ros::WallTime& now) {
+  // As many stamps as the filter can hold scans: a late release comes before that many more.
+  constexpr std::size_t kRescuedStampsKept = 1000;
+  for (Entry& entry : entries_) {
+    if (entry.state != State::kWaiting ||
+        now < entry.arrived + ::ros::WallDuration(kRescueSeconds) ||
+        !buffer_.canTransform(odom_frame_, entry.scan->header.frame_id, entry.stamp)) {
+      continue;
+    }
+    entry.state = State::kReleased;
+    entry.released = now;
+    rescued_stamps_.push_back(entry.stamp);
+    if (rescued_stamps_.size() > kRescuedStampsKept) rescued_stamps_.pop_front();
+    ++rescued_;
+  }
+}
+
 void ScanInput::Flush() {
   std::vector<std::pair<sensor_msgs::LaserScanConstPtr, ScanArrival>> ready;
   std::optional<::ros::WallTime> deadline;
   const ::ros::WallTime now = ::ros::WallTime::now();
   {
     const std::lock_guard<std::mutex> lock(mutex_);
+    Rescue(now);
     while (!entries_.empty()) {
       Entry& front = entries_.front();
       if (front.state == State::kReleased) {
@@ -86,7 +113,7 @@ void ScanInput::Flush() {
         if (!holding) break;
         const ::ros::WallTime pass_at = front.arrived + ::ros::WallDuration(kHoldSeconds);
         if (now < pass_at) {
-          deadline = pass_at;
+          if (!deadline || pass_at < *deadline) deadline = pass_at;
           break;
         }
       }
