@@ -38,6 +38,10 @@ ScanInput::Entry* ScanInput::Waiting(const ::ros::Time& stamp) {
   return nullptr;
 }
 
+bool ScanInput::Rescued(const ::ros::Time& stamp) const {
+  return std::find(rescued_stamps_.begin(), rescued_stamps_.end(), stamp) != rescued_stamps_.end();
+}
+
 void ScanInput::OnArrival(const sensor_msgs::LaserScanConstPtr& scan) {
   const std::lock_guard<std::mutex> lock(mutex_);
   entries_.push_back({scan->header.stamp, ::ros::WallTime::now(), State::kWaiting, scan, {}});
@@ -48,8 +52,7 @@ void ScanInput::OnReleased(const sensor_msgs::LaserScanConstPtr& scan) {
   bool noted = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (std::find(rescued_stamps_.begin(), rescued_stamps_.end(), scan->header.stamp) !=
-        rescued_stamps_.end()) {
+    if (Rescued(scan->header.stamp)) {
       return;  // released here already
     }
     if (Entry* entry = Waiting(scan->header.stamp)) {
@@ -65,11 +68,16 @@ void ScanInput::OnReleased(const sensor_msgs::LaserScanConstPtr& scan) {
 
 void ScanInput::OnDropped(const sensor_msgs::LaserScanConstPtr& scan,
                           tf2_ros::filter_failure_reasons::FilterFailureReason reason) {
-  ++dropped_;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
+    // A scan released here that the filter gives up on later (pushed out of its queue) was not
+    // lost.
+    if (Rescued(scan->header.stamp)) {
+      return;
+    }
     if (Entry* entry = Waiting(scan->header.stamp)) entry->state = State::kDropped;
   }
+  ++dropped_;
   const char* why = reason == tf2_ros::filter_failure_reasons::OutTheBack ? "older than tf's cache"
                     : reason == tf2_ros::filter_failure_reasons::EmptyFrameID
                         ? "no frame_id"

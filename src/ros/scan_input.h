@@ -81,6 +81,8 @@ class ScanInput {
                  tf2_ros::filter_failure_reasons::FilterFailureReason reason);
   // The first scan still waiting with 'stamp'; null when none (mutex_ held).
   Entry* Waiting(const ::ros::Time& stamp);
+  // Whether the scan with 'stamp' was released here (mutex_ held).
+  bool Rescued(const ::ros::Time& stamp) const;
   // Marks released the waiting scans older than kRescueSeconds whose transform tf has
   // (mutex_ held).
   void Rescue(const ::ros::WallTime& now);
