@@ -13,7 +13,8 @@
 // dilation and erosion (seed 001 §1.1), and cut into connected regions; a region on which
 // several detections of its class fall in the same frames is split into that many objects
 // (side-by-side cabinets touch on a 5 cm grid); each object's shape is completed from its
-// class prior (shape_fit.h), and parts that are one object are joined (object_association.h).
+// class prior (shape_fit.h), parts that are one object are joined, shapes far larger than
+// their class are dropped, and an object named two ways keeps one name (object_association.h).
 namespace semchain::semantic {
 
 // One detection's footprint on the map.
