@@ -121,7 +121,7 @@ void ScanInput::Flush() {
         if (!holding) break;
         const ::ros::WallTime pass_at = front.arrived + ::ros::WallDuration(kHoldSeconds);
         if (now < pass_at) {
-          if (!deadline || pass_at < *deadline) deadline = pass_at;
+          deadline = pass_at;
           break;
         }
       }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 namespace semchain::semantic {
 namespace {
@@ -179,30 +180,52 @@ bool Outweighs(const ObjectPart& a, const ObjectPart& b) {
 
 }  // namespace
 
+namespace {
+
+// The overlap of two parts' footprints (fraction of the smaller) when they are one object named
+// two ways (OneObjectTwoNames), else nothing.
+std::optional<double> NameConflictOverlap(const ClassedPart& a, const ClassedPart& b,
+                                          const ObjectExtractionOptions& options) {
+  if (a.class_id == b.class_id || options.merge_across_classes > 1.0 ||
+      PartsSeenAsTwo(a.fitted.part, b.fitted.part, options)) {
+    return std::nullopt;
+  }
+  const double overlap = OverlapOfSmaller(a.fitted.shape, b.fitted.shape);
+  if (overlap < options.merge_across_classes) return std::nullopt;
+  return overlap;
+}
+
+}  // namespace
+
 bool OneObjectTwoNames(const ClassedPart& a, const ClassedPart& b,
                        const ObjectExtractionOptions& options) {
-  return a.class_id != b.class_id && options.merge_across_classes <= 1.0 &&
-         !PartsSeenAsTwo(a.fitted.part, b.fitted.part, options) &&
-         OverlapOfSmaller(a.fitted.shape, b.fitted.shape) >= options.merge_across_classes;
+  return NameConflictOverlap(a, b, options).has_value();
 }
 
 std::vector<std::size_t> ResolveClassConflicts(const std::vector<ClassedPart>& parts,
                                                const ObjectExtractionOptions& options) {
-  std::vector<bool> dropped(parts.size(), false);
-  while (true) {
-    std::size_t loser = parts.size();
-    double best = -1.0;
-    for (std::size_t i = 0; i < parts.size(); ++i) {
-      for (std::size_t j = i + 1; j < parts.size(); ++j) {
-        if (dropped[i] || dropped[j] || !OneObjectTwoNames(parts[i], parts[j], options)) continue;
-        const double overlap = OverlapOfSmaller(parts[i].fitted.shape, parts[j].fitted.shape);
-        if (overlap <= best) continue;
-        best = overlap;
-        loser = Outweighs(parts[i].fitted.part, parts[j].fitted.part) ? j : i;
+  // Nothing is refitted, so the overlaps are known at the start: the pairs, largest overlap
+  // first (ties in index order), each decided unless one of its parts was dropped already.
+  struct Conflict {
+    double overlap;
+    std::size_t i;
+    std::size_t j;
+  };
+  std::vector<Conflict> conflicts;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    for (std::size_t j = i + 1; j < parts.size(); ++j) {
+      if (const std::optional<double> overlap = NameConflictOverlap(parts[i], parts[j], options)) {
+        conflicts.push_back({*overlap, i, j});
       }
     }
-    if (loser == parts.size()) break;
-    dropped[loser] = true;
+  }
+  std::stable_sort(conflicts.begin(), conflicts.end(),
+                   [](const Conflict& a, const Conflict& b) { return a.overlap > b.overlap; });
+  std::vector<bool> dropped(parts.size(), false);
+  for (const Conflict& conflict : conflicts) {
+    if (dropped[conflict.i] || dropped[conflict.j]) continue;
+    const bool i_wins = Outweighs(parts[conflict.i].fitted.part, parts[conflict.j].fitted.part);
+    dropped[i_wins ? conflict.j : conflict.i] = true;
   }
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < parts.size(); ++i) {
