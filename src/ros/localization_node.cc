@@ -241,7 +241,12 @@ void LocalizationNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& messa
 void LocalizationNode::AddFrame(double stamp, std::vector<Detection> detections,
                                 const cv::Mat& color) {
   const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
-  if (!camera) return;
+  if (!camera) {
+    if (!camera_.has_info()) {
+      ROS_WARN_THROTTLE(5.0, "semchain_ros: detections before any camera_info; skipped");
+    }
+    return;
+  }
   const std::lock_guard<std::mutex> lock(mutex_);
   localizer_.AddFrame({stamp, std::move(detections), *camera, color, {}});
 }

@@ -197,8 +197,21 @@ void MappingNode::PublishMap(const ::ros::Time& stamp) {
 
 void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
   const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
-  if (!camera) return;
   const std::lock_guard<std::mutex> lock(mutex_);
+  // camera_info comes on a connection of its own and may reach the node after the first images:
+  // their frames wait for it instead of being lost.
+  frames_awaiting_camera_.push_back({std::move(frame), depth_m});
+  if (frames_awaiting_camera_.size() > kFrameQueue) {
+    frames_awaiting_camera_.pop_front();
+    ++frames_lost_;
+    ROS_WARN_THROTTLE(5.0,
+                      "semchain_ros: no camera yet (camera_info and its frame in tf): the "
+                      "oldest waiting frame is dropped");
+  }
+  if (camera) MapAwaitingFrames(*camera);
+}
+
+void MappingNode::MapAwaitingFrames(const MountedCamera& camera) {
   if (!semantic_) {
     // The semantic grid numbers its cells on the SLAM grid's lattice (cells from the origin).
     semantic::GridGeometry lattice;
@@ -206,7 +219,7 @@ void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
     semantic::LiveSemanticOptions options;
     options.map.points.min_score = parameters_.min_detection_score;
     Result<std::unique_ptr<semantic::LiveSemanticRun>> created =
-        semantic::LiveSemanticRun::Create(*camera, DefaultClassNames(), lattice, options, Warn,
+        semantic::LiveSemanticRun::Create(camera, DefaultClassNames(), lattice, options, Warn,
                                           detector_ ? "camera" : "/semchain/detections");
     if (!created.ok()) {
       ROS_ERROR_THROTTLE(5.0, "semchain_ros: %s", created.status().message().c_str());
@@ -214,9 +227,13 @@ void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
     }
     semantic_ = std::move(*created);
   }
-  const cv::Mat depth =
-      depth_m.empty() ? semantic::DepthFromBoxes(frame.detections, camera->intrinsics) : depth_m;
-  semantic_->AddFrame(std::move(frame), depth);
+  for (AwaitingFrame& waiting : frames_awaiting_camera_) {
+    const cv::Mat depth = waiting.depth_m.empty() ? semantic::DepthFromBoxes(
+                                                        waiting.frame.detections, camera.intrinsics)
+                                                  : waiting.depth_m;
+    semantic_->AddFrame(std::move(waiting.frame), depth);
+  }
+  frames_awaiting_camera_.clear();
   // A frame the detector hands over after the scans of its time were fed (the detector is
   // slower than the scans, or the bag has ended) is mapped now: no later scan may come to map it.
   if (!trajectory_.empty() && semantic_->next_stamp() <= trajectory_.back().timestamp) {
@@ -250,6 +267,15 @@ void MappingNode::OnKeyframeImage(const sensor_msgs::ImageConstPtr& message) {
 
 void MappingNode::OnCameraInfo(const sensor_msgs::CameraInfoConstPtr& message) {
   camera_.OnCameraInfo(*message);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (frames_awaiting_camera_.empty()) return;
+  }
+  // Outside the lock: the lookup may wait for tf, and the scans must not wait with it.
+  const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
+  if (!camera) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  MapAwaitingFrames(*camera);
 }
 
 void MappingNode::OnDepthImage(const sensor_msgs::ImageConstPtr& message) {
@@ -350,6 +376,12 @@ void MappingNode::Shutdown() {
                kDetectorDrainSeconds);
     }
   }
+  if (!frames_awaiting_camera_.empty()) {
+    ROS_WARN(
+        "semchain_ros: %zu frames not mapped: no camera for them (camera_info, or tf from %s to "
+        "its frame)",
+        frames_awaiting_camera_.size(), parameters_.frames.base_frame_id.c_str());
+  }
   // A map saved since the last scan and frame is what a save now would write (the final passes
   // take seconds).
   const bool saved_already = saved_at_ == std::pair(slam_.size(), MappedFrames());
@@ -373,8 +405,10 @@ Status MappingNode::WriteStats() const {
       {"dropped_scans", timings_.dropped_scans + (scan_input_ ? scan_input_->dropped() : 0)},
       {"rescued_scans", scan_input_ ? scan_input_->rescued() : 0},
       {"rejected_scans", timings_.rejected_scans},
+      {"frames_detected", detector_ ? static_cast<int>(timings_.detect_ms.size()) : 0},
       {"frames_mapped", MappedFrames()},
       {"frames_skipped", semantic_ ? semantic_->skipped_frames() : 0},
+      {"frames_without_camera", frames_lost_ + static_cast<int>(frames_awaiting_camera_.size())},
       {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
       {"detector_ms_per_frame", Spread(timings_.detect_ms)},
       {"scan_seconds", span},

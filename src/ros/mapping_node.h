@@ -10,6 +10,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -91,6 +92,9 @@ class MappingNode {
   // one).
   void AddFrame(FrameDetections frame, const cv::Mat& depth_m);
   void AddDetectedFrame(std::optional<RgbdDetections> detected);
+  // Gives the semantic mapper the frames that waited for the camera (created with the first);
+  // with mutex_ held.
+  void MapAwaitingFrames(const MountedCamera& camera);
   void PublishTransform(const ::ros::Time& stamp, const Pose2& pose, const Pose2& odometry);
   void PublishMap(const ::ros::Time& stamp);
   int MappedFrames() const;  // with mutex_ held (or the detector's thread stopped)
@@ -108,10 +112,19 @@ class MappingNode {
   CameraTracker camera_;
   RgbdDetector rgbd_;
   // Guards what the detector's thread shares with the main queue's callbacks: the semantic
-  // mapper, the keyframes' images and the detector's timings. SLAM is the main queue's alone.
+  // mapper and the frames on their way to it, the keyframes' images and the detector's timings.
+  // SLAM is the main queue's alone.
   std::mutex mutex_;
   std::unique_ptr<semantic::LiveSemanticRun> semantic_;  // once the camera is known
   semantic::KeyframeImages keyframe_images_;
+  // Frames on their way to the semantic mapper, waiting while the camera is not known yet (at
+  // most the frames' queue); those dropped from a full queue are counted.
+  struct AwaitingFrame {
+    FrameDetections frame;
+    cv::Mat depth_m;
+  };
+  std::deque<AwaitingFrame> frames_awaiting_camera_;
+  int frames_lost_ = 0;
 
   // With ~detector: the camera's subscriptions are served here (declared before them, so that
   // it outlives them; stopped first thing when the node shuts down).

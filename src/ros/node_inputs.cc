@@ -64,10 +64,7 @@ void CameraTracker::OnCameraInfo(const sensor_msgs::CameraInfo& message) {
 std::optional<MountedCamera> CameraTracker::Camera(const tf2_ros::Buffer& buffer,
                                                    const NodeFrames& frames) {
   if (camera_) return camera_;
-  if (!info_) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: detections before any camera_info; skipped");
-    return std::nullopt;
-  }
+  if (!info_) return std::nullopt;
   bool has_distortion = false;
   Result<PinholeCamera> intrinsics = FromCameraInfoMsg(*info_, &has_distortion);
   if (!intrinsics.ok()) {

@@ -55,8 +55,10 @@ class CameraTracker {
  public:
   explicit CameraTracker(double max_range) : max_range_(max_range) {}
   void OnCameraInfo(const sensor_msgs::CameraInfo& message);
-  // The camera (intrinsics and its mounting on 'base_frame'); nullopt with a throttled warning
-  // while camera_info or the transform is missing.
+  bool has_info() const { return info_.has_value(); }
+  // The camera (intrinsics and its mounting on 'base_frame'); nullopt while camera_info is
+  // missing (has_info() says so; the caller decides what becomes of its frame), or with a
+  // throttled warning while the transform is.
   std::optional<MountedCamera> Camera(const tf2_ros::Buffer& buffer, const NodeFrames& frames);
 
  private:

@@ -22,7 +22,8 @@ def main() -> int:
     detected = stats["detector_ms_per_frame"]
     print(f"bag: {scans} scans, {images} colour images; node: {stats['scans']} scans "
           f"({stats['dropped_scans']} dropped, {stats['rejected_scans']} rejected), "
-          f"{stats['frames_mapped']} frames mapped, {stats['frames_skipped']} skipped, "
+          f"{stats['frames_detected']} frames detected, {stats['frames_mapped']} mapped, "
+          f"{stats['frames_skipped']} skipped, {stats['frames_without_camera']} without a camera, "
           f"detector median {detected['median'] if detected else None} ms")
     problems = []
     if stats["scans"] != scans or stats["dropped_scans"] or stats["rejected_scans"]:
