@@ -8,17 +8,17 @@
 namespace semchain::ros1 {
 namespace {
 
-// A callback that only says it ran: queued behind the others, it marks when they have run.
-class Marker : public ::ros::CallbackInterface {
+// A function queued as a callback.
+class FunctionCallback : public ::ros::CallbackInterface {
  public:
-  explicit Marker(std::shared_ptr<std::promise<void>> ran) : ran_(std::move(ran)) {}
+  explicit FunctionCallback(std::function<void()> work) : work_(std::move(work)) {}
   CallResult call() override {
-    ran_->set_value();
+    work_();
     return Success;
   }
 
  private:
-  std::shared_ptr<std::promise<void>> ran_;
+  std::function<void()> work_;
 };
 
 }  // namespace
@@ -32,11 +32,16 @@ void DetectorThread::Start() {
   running_ = true;
 }
 
+void DetectorThread::Post(std::function<void()> work) {
+  queue_.addCallback(boost::make_shared<FunctionCallback>(std::move(work)));
+}
+
 bool DetectorThread::Drain(double timeout_seconds) {
   if (!running_) return false;
+  // Queued behind the others, it marks when they have run.
   auto ran = std::make_shared<std::promise<void>>();
   std::future<void> done = ran->get_future();
-  queue_.addCallback(boost::make_shared<Marker>(ran));
+  Post([ran] { ran->set_value(); });
   return done.wait_for(std::chrono::duration<double>(timeout_seconds)) == std::future_status::ready;
 }
 

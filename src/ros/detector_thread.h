@@ -4,6 +4,8 @@
 #include <ros/node_handle.h>
 #include <ros/spinner.h>
 
+#include <functional>
+
 // The detector's own callback queue, served by a thread of its own (a ros::AsyncSpinner): the
 // node subscribes its camera topics through nh(), so that the detector (tens of milliseconds a
 // frame) runs beside the scans on the node's main queue instead of before them. One thread
@@ -21,6 +23,8 @@ class DetectorThread {
 
   ::ros::NodeHandle& nh() { return nh_; }
   void Start();
+  // Queues 'work' behind the callbacks queued now, to run on this thread.
+  void Post(std::function<void()> work);
   // Waits until every callback queued now has run, at most 'timeout_seconds' of wall time;
   // false when the time ran out (or the thread is not running).
   bool Drain(double timeout_seconds);

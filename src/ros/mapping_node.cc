@@ -24,7 +24,8 @@ namespace {
 // Scans wait while the map is published or saved (a second or so): a queue as deep as a few
 // seconds of scans keeps every scan, as `semchain slam` uses every scan of a log.
 constexpr std::uint32_t kScanQueue = 200;
-constexpr std::uint32_t kFrameQueue = 50;
+// The detections topic's messages are small and quick to handle.
+constexpr std::uint32_t kDetectionsQueue = 50;
 
 void Warn(const std::string& line) { ROS_WARN("semchain_ros: %s", line.c_str()); }
 
@@ -59,8 +60,11 @@ MappingNode::~MappingNode() { Shutdown(); }
 
 namespace {
 
+// The largest share of the frames' thread that the objects' snapshots for /semchain/objects take.
+constexpr double kObjectsSnapshotShare = 0.1;
+
 // How long the save service waits for the frames the detector is still working on.
-constexpr double kDetectorDrainSeconds = 10.0;
+constexpr double kDetectorDrainSeconds = 30.0;
 
 }  // namespace
 
@@ -70,25 +74,26 @@ void MappingNode::Start(const NodeMode& mode) {
   scan_input_ = std::make_unique<ScanInput>(
       nh_, "scan", kScanQueue, tf_buffer_, parameters_.frames.odom_frame_id,
       [this](const sensor_msgs::LaserScanConstPtr& scan, const ScanArrival&) { OnScan(scan); });
+  const auto frame_queue = static_cast<std::uint32_t>(parameters_.frame_queue_size);
   if (detector_) {
     // camera_info on the detector's thread too: the camera is used there only.
     detector_thread_ = std::make_unique<DetectorThread>(nh_);
     ::ros::NodeHandle& camera_nh = detector_thread_->nh();
     camera_info_subscriber_ =
         camera_nh.subscribe("camera/color/camera_info", 2, &MappingNode::OnCameraInfo, this);
-    color_subscriber_ = camera_nh.subscribe("camera/color/image_raw", kFrameQueue,
+    color_subscriber_ = camera_nh.subscribe("camera/color/image_raw", frame_queue,
                                             &MappingNode::OnColorImage, this);
-    depth_subscriber_ = camera_nh.subscribe("camera/depth/image_raw", kFrameQueue,
+    depth_subscriber_ = camera_nh.subscribe("camera/depth/image_raw", frame_queue,
                                             &MappingNode::OnDepthImage, this);
     detector_thread_->Start();
   } else {
     camera_info_subscriber_ =
         nh_.subscribe("camera/color/camera_info", 2, &MappingNode::OnCameraInfo, this);
     detections_subscriber_ =
-        nh_.subscribe("semchain/detections", kFrameQueue, &MappingNode::OnDetections, this);
+        nh_.subscribe("semchain/detections", kDetectionsQueue, &MappingNode::OnDetections, this);
     if (parameters_.keyframe_images) {
       color_subscriber_ =
-          nh_.subscribe("camera/color/image_raw", kFrameQueue, &MappingNode::OnKeyframeImage, this);
+          nh_.subscribe("camera/color/image_raw", frame_queue, &MappingNode::OnKeyframeImage, this);
     }
   }
   save_service_ = nh_.advertiseService("semchain/save_map", &MappingNode::OnSaveMap, this);
@@ -155,13 +160,35 @@ void MappingNode::OnScan(const sensor_msgs::LaserScanConstPtr& message) {
 
 void MappingNode::Feed(const StampedScan& scan) {
   const mapping::SlamStep step = slam_.AddScan(scan);
+  {
+    const std::lock_guard<std::mutex> lock(trajectory_mutex_);
+    trajectory_ = slam_.Trajectory();
+  }
+  // The semantic mapper is the detector thread's when there is one: the scans never wait for
+  // it (a snapshot of hundreds of frames takes hundreds of milliseconds).
+  if (detector_thread_) {
+    detector_thread_->Post([this, processed = step.processed] { AdvanceSemantic(processed); });
+  } else {
+    AdvanceSemantic(step.processed);
+  }
+}
+
+void MappingNode::AdvanceSemantic(bool corrected) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  trajectory_ = slam_.Trajectory();
   if (!semantic_) return;
+  const std::vector<StampedPose> trajectory = Trajectory();
+  if (trajectory.empty()) return;
   // As `slam --semantic` does: frames wait for a pose; a filter update may move mapped ones.
-  if (!step.processed && semantic_->next_stamp() > scan.scan.timestamp) return;
-  const Status advanced = semantic_->Advance(trajectory_, step.processed, {});
+  if (!corrected && semantic_->next_stamp() > trajectory.back().timestamp) return;
+  const double cpu_start = ThreadCpuSeconds();
+  const Status advanced = semantic_->Advance(trajectory, corrected, {});
+  timings_.semantic_seconds += ThreadCpuSeconds() - cpu_start;
   if (!advanced.ok()) ROS_ERROR("semchain_ros: %s", advanced.message().c_str());
+}
+
+std::vector<StampedPose> MappingNode::Trajectory() const {
+  const std::lock_guard<std::mutex> lock(trajectory_mutex_);
+  return trajectory_;
 }
 
 void MappingNode::PublishTransform(const ::ros::Time& stamp, const Pose2& pose,
@@ -176,14 +203,34 @@ void MappingNode::PublishTransform(const ::ros::Time& stamp, const Pose2& pose,
 }
 
 void MappingNode::PublishMap(const ::ros::Time& stamp) {
-  const mapping::MapImage image = mapping::GridToMapImage(*slam_.filter().BestParticle().map);
-  nav_msgs::OccupancyGrid grid = ToOccupancyGridMsg(image, parameters_.frames.global_frame_id);
+  auto image = std::make_shared<const mapping::MapImage>(
+      mapping::GridToMapImage(*slam_.filter().BestParticle().map));
+  nav_msgs::OccupancyGrid grid = ToOccupancyGridMsg(*image, parameters_.frames.global_frame_id);
   grid.header.stamp = stamp;
   grid.info.map_load_time = stamp;
   map_publisher_.publish(grid);
+  // The objects on this map take a snapshot of the semantic map (hundreds of milliseconds with
+  // hundreds of frames): on the detector's thread, so that the scans do not wait for it.
+  if (detector_thread_) {
+    detector_thread_->Post([this, image, stamp] { PublishObjects(*image, stamp); });
+  } else {
+    PublishObjects(*image, stamp);
+  }
+}
+
+void MappingNode::PublishObjects(const mapping::MapImage& image, const ::ros::Time& stamp) {
+  if (!::ros::ok()) return;  // posted before the node began to shut down: nobody listens now
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!semantic_ || semantic_->mapped_frames() == 0) return;
-  const semantic::SemanticMappingResult current = semantic_->Current(trajectory_, image);
+  const ::ros::WallTime start = ::ros::WallTime::now();
+  // A snapshot's cost grows with the frames; when the map updates come faster than that allows
+  // (a bag played fast), some are left out rather than take the frames' time.
+  if (next_objects_wall_ && start < *next_objects_wall_) return;
+  const double cpu_start = ThreadCpuSeconds();
+  const semantic::SemanticMappingResult current = semantic_->Current(Trajectory(), image);
+  timings_.snapshot_seconds += ThreadCpuSeconds() - cpu_start;
+  const double took = (::ros::WallTime::now() - start).toSec();
+  next_objects_wall_ = start + ::ros::WallDuration(took / kObjectsSnapshotShare);
   visualization_msgs::MarkerArray markers =
       ObjectMarkers(current.map, {}, parameters_.frames.global_frame_id);
   for (visualization_msgs::Marker& marker : markers.markers) marker.header.stamp = stamp;
@@ -201,7 +248,7 @@ void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
   // camera_info comes on a connection of its own and may reach the node after the first images:
   // their frames wait for it instead of being lost.
   frames_awaiting_camera_.push_back({std::move(frame), depth_m});
-  if (frames_awaiting_camera_.size() > kFrameQueue) {
+  if (frames_awaiting_camera_.size() > static_cast<std::size_t>(parameters_.frame_queue_size)) {
     frames_awaiting_camera_.pop_front();
     ++frames_lost_;
     ROS_WARN_THROTTLE(5.0,
@@ -236,8 +283,9 @@ void MappingNode::MapAwaitingFrames(const MountedCamera& camera) {
   frames_awaiting_camera_.clear();
   // A frame the detector hands over after the scans of its time were fed (the detector is
   // slower than the scans, or the bag has ended) is mapped now: no later scan may come to map it.
-  if (!trajectory_.empty() && semantic_->next_stamp() <= trajectory_.back().timestamp) {
-    const Status advanced = semantic_->Advance(trajectory_, false, {});
+  const std::vector<StampedPose> trajectory = Trajectory();
+  if (!trajectory.empty() && semantic_->next_stamp() <= trajectory.back().timestamp) {
+    const Status advanced = semantic_->Advance(trajectory, false, {});
     if (!advanced.ok()) ROS_ERROR("semchain_ros: %s", advanced.message().c_str());
   }
 }
@@ -411,6 +459,8 @@ Status MappingNode::WriteStats() const {
       {"frames_without_camera", frames_lost_ + static_cast<int>(frames_awaiting_camera_.size())},
       {"cpu_ms_per_scan", Spread(timings_.cpu_ms)},
       {"detector_ms_per_frame", Spread(timings_.detect_ms)},
+      {"semantic_cpu_seconds", timings_.semantic_seconds},
+      {"objects_snapshot_cpu_seconds", timings_.snapshot_seconds},
       {"scan_seconds", span},
       {"wall_seconds", timings_.wall_seconds},
       {"real_time_factor", timings_.wall_seconds > 0.0 ? span / timings_.wall_seconds : 0.0}};

@@ -45,6 +45,8 @@ namespace semchain::ros1 {
 struct MappingTimings {
   std::vector<double> cpu_ms;     // thread CPU per scan: SLAM and the semantic mapper
   std::vector<double> detect_ms;  // wall time of ~detector per camera frame
+  double semantic_seconds = 0.0;  // thread CPU of the semantic mapper advancing on the trajectory
+  double snapshot_seconds = 0.0;  // thread CPU of the objects' snapshots for /semchain/objects
   int dropped_scans = 0;          // no odometry (tf) for them
   int rejected_scans = 0;         // out of time order, or repeated
   double first_stamp = -1.0;      // scan time span, for the real-time factor
@@ -88,6 +90,10 @@ class MappingNode {
   // warns when not.
   bool Acceptable(const StampedScan& scan) const;
   void Feed(const StampedScan& scan);
+  // Maps the frames the trajectory now poses ('corrected': SLAM's filter has updated, mapped
+  // frames may move); on the frames' thread, with mutex_ not held.
+  void AdvanceSemantic(bool corrected);
+  std::vector<StampedPose> Trajectory() const;  // a copy, under trajectory_mutex_
   // Gives the semantic mapper a frame (on the thread of its source: the detector's or the main
   // one).
   void AddFrame(FrameDetections frame, const cv::Mat& depth_m);
@@ -96,7 +102,10 @@ class MappingNode {
   // with mutex_ held.
   void MapAwaitingFrames(const MountedCamera& camera);
   void PublishTransform(const ::ros::Time& stamp, const Pose2& pose, const Pose2& odometry);
+  // /map from SLAM's best particle, and the objects on it (PublishObjects: on the detector's
+  // thread when there is one).
   void PublishMap(const ::ros::Time& stamp);
+  void PublishObjects(const mapping::MapImage& image, const ::ros::Time& stamp);
   int MappedFrames() const;  // with mutex_ held (or the detector's thread stopped)
   Status WriteStats() const;
 
@@ -139,12 +148,15 @@ class MappingNode {
   ::ros::Publisher objects_publisher_;
   ::ros::ServiceServer save_service_;
 
-  // SLAM's best so far, one pose per scan; written with mutex_ held (the detector's thread reads
-  // it).
+  // SLAM's best so far, one pose per scan; written on the main queue under trajectory_mutex_
+  // (the detector's thread reads it), which is taken after mutex_ where both are held.
+  mutable std::mutex trajectory_mutex_;
   std::vector<StampedPose> trajectory_;
   std::optional<double> last_map_stamp_;
   std::optional<::ros::WallTime> first_scan_wall_;
-  std::size_t published_objects_ = 0;
+  std::size_t published_objects_ = 0;  // with mutex_ held
+  // The earliest wall time of the next objects' snapshot (with mutex_ held).
+  std::optional<::ros::WallTime> next_objects_wall_;
   bool shut_down_ = false;
   std::optional<std::pair<std::size_t, int>> saved_at_;  // scans and frames at the last save
   MappingTimings timings_;

@@ -82,6 +82,8 @@ Result<MappingNodeParameters> ReadMappingNodeParameters(const ::ros::NodeHandle&
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "stats_file", &p.stats_file));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "save_on_shutdown", &p.save_on_shutdown));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "keyframe_images", &p.keyframe_images));
+  SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "frame_queue_size", &p.frame_queue_size));
+  if (p.frame_queue_size < 1) return Status::Error("parameter ~frame_queue_size: must be >= 1");
   // slam_gmapping's frame names.
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "base_frame", &p.frames.base_frame_id));
   SEMCHAIN_RETURN_IF_ERROR(ReadParameter(nh, "odom_frame", &p.frames.odom_frame_id));
@@ -103,15 +105,16 @@ std::string DescribeMappingParameters(const MappingNodeParameters& p) {
       line, sizeof(line),
       "slam_config %s, particles %d, delta %.3g m, maxUrange %.3g m, linearUpdate %.3g m, "
       "angularUpdate %.3g rad, resampleThreshold %.3g, map_update_interval %.3g s, "
-      "frames %s/%s/%s, keyframe_images %s, min_detection_score %.3g, save_on_shutdown %s, "
+      "frames %s/%s/%s, keyframe_images %s, frame_queue_size %d, min_detection_score %.3g, "
+      "save_on_shutdown %s, "
       "seed %llu, threads %d",
       p.slam_config.empty() ? "(defaults)" : p.slam_config.c_str(), rbpf.particles,
       rbpf.grid.resolution_meters, rbpf.scan.max_range_meters, rbpf.linear_update_meters,
       rbpf.angular_update_radians, rbpf.resample_threshold, p.map_update_interval,
       p.frames.global_frame_id.c_str(), p.frames.odom_frame_id.c_str(),
-      p.frames.base_frame_id.c_str(), p.keyframe_images ? "true" : "false", p.min_detection_score,
-      p.save_on_shutdown ? "true" : "false", static_cast<unsigned long long>(rbpf.seed),
-      rbpf.threads);
+      p.frames.base_frame_id.c_str(), p.keyframe_images ? "true" : "false", p.frame_queue_size,
+      p.min_detection_score, p.save_on_shutdown ? "true" : "false",
+      static_cast<unsigned long long>(rbpf.seed), rbpf.threads);
   return line;
 }
 
