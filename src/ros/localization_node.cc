@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/cpu_time.h"
 #include "io/detections_io.h"
+#include "ros/log_throttle.h"
 #include "ros/node_inputs.h"
 #include "ros/object_markers.h"
 #include "ros/ros_geometry.h"
@@ -243,7 +244,7 @@ void LocalizationNode::AddFrame(double stamp, std::vector<Detection> detections,
   const std::optional<MountedCamera> camera = camera_.Camera(tf_buffer_, parameters_.frames);
   if (!camera) {
     if (!camera_.has_info()) {
-      ROS_WARN_THROTTLE(5.0, "semchain_ros: detections before any camera_info; skipped");
+      SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: detections before any camera_info; skipped");
     }
     return;
   }
@@ -254,7 +255,7 @@ void LocalizationNode::AddFrame(double stamp, std::vector<Detection> detections,
 void LocalizationNode::OnDetections(const std_msgs::StringConstPtr& message) {
   Result<FrameDetections> frame = ParseDetectionsRecord(message->data, "/semchain/detections");
   if (!frame.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", frame.status().message().c_str());
+    SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: %s", frame.status().message().c_str());
     return;
   }
   AddFrame(frame->stamp, std::move(frame->detections), cv::Mat());

@@ -10,6 +10,7 @@
 #include "core/cpu_time.h"
 #include "io/detections_io.h"
 #include "mapping/map_io.h"
+#include "ros/log_throttle.h"
 #include "ros/object_markers.h"
 #include "ros/ros_geometry.h"
 #include "ros/ros_image.h"
@@ -120,10 +121,10 @@ bool MappingNode::Acceptable(const StampedScan& scan) const {
   // A scan stamped as the last one is the same scan again: the tf filter releases an old scan
   // sent again at once (tf knows its stamp) while the newer one before it still waits for tf.
   if (scan.scan.timestamp <= last.scan.timestamp) {
-    ROS_WARN_THROTTLE(5.0,
-                      "semchain_ros: scan at %.3f s is not newer than the last one (%.3f s): "
-                      "out of time order, skipped",
-                      scan.scan.timestamp, last.scan.timestamp);
+    SEMCHAIN_WARN_THROTTLE(5.0,
+                           "semchain_ros: scan at %.3f s is not newer than the last one (%.3f s): "
+                           "out of time order, skipped",
+                           scan.scan.timestamp, last.scan.timestamp);
     return false;
   }
   return true;
@@ -251,9 +252,9 @@ void MappingNode::AddFrame(FrameDetections frame, const cv::Mat& depth_m) {
   if (frames_awaiting_camera_.size() > static_cast<std::size_t>(parameters_.frame_queue_size)) {
     frames_awaiting_camera_.pop_front();
     ++frames_lost_;
-    ROS_WARN_THROTTLE(5.0,
-                      "semchain_ros: no camera yet (camera_info and its frame in tf): the "
-                      "oldest waiting frame is dropped");
+    SEMCHAIN_WARN_THROTTLE(5.0,
+                           "semchain_ros: no camera yet (camera_info and its frame in tf): the "
+                           "oldest waiting frame is dropped");
   }
   if (camera) MapAwaitingFrames(*camera);
 }
@@ -269,7 +270,7 @@ void MappingNode::MapAwaitingFrames(const MountedCamera& camera) {
         semantic::LiveSemanticRun::Create(camera, DefaultClassNames(), lattice, options, Warn,
                                           detector_ ? "camera" : "/semchain/detections");
     if (!created.ok()) {
-      ROS_ERROR_THROTTLE(5.0, "semchain_ros: %s", created.status().message().c_str());
+      SEMCHAIN_ERROR_THROTTLE(5.0, "semchain_ros: %s", created.status().message().c_str());
       return;
     }
     semantic_ = std::move(*created);
@@ -293,7 +294,7 @@ void MappingNode::MapAwaitingFrames(const MountedCamera& camera) {
 void MappingNode::OnDetections(const std_msgs::StringConstPtr& message) {
   Result<FrameDetections> frame = ParseDetectionsRecord(message->data, "/semchain/detections");
   if (!frame.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", frame.status().message().c_str());
+    SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: %s", frame.status().message().c_str());
     return;
   }
   if (parameters_.keyframe_images && !frame->detections.empty()) {
@@ -306,7 +307,7 @@ void MappingNode::OnDetections(const std_msgs::StringConstPtr& message) {
 void MappingNode::OnKeyframeImage(const sensor_msgs::ImageConstPtr& message) {
   Result<cv::Mat> rgb = ColorFromImageMsg(*message);
   if (!rgb.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
+    SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
     return;
   }
   const std::lock_guard<std::mutex> lock(mutex_);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "detection/run_detection.h"
+#include "ros/log_throttle.h"
 #include "ros/ros_geometry.h"
 #include "ros/ros_image.h"
 #include "ros/ros_scan.h"
@@ -25,8 +26,8 @@ std::optional<geometry_msgs::TransformStamped> LookUpTransform(const tf2_ros::Bu
   std::string error;
   while (!buffer.canTransform(target, source, stamp, &error)) {
     if (::ros::WallTime::now() >= deadline || !::ros::ok()) {
-      ROS_WARN_THROTTLE(5.0, "semchain_ros: no transform %s -> %s at %.3f: %s", target.c_str(),
-                        source.c_str(), stamp.toSec(), error.c_str());
+      SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: no transform %s -> %s at %.3f: %s", target.c_str(),
+                             source.c_str(), stamp.toSec(), error.c_str());
       return std::nullopt;
     }
     error.clear();
@@ -68,7 +69,7 @@ std::optional<MountedCamera> CameraTracker::Camera(const tf2_ros::Buffer& buffer
   bool has_distortion = false;
   Result<PinholeCamera> intrinsics = FromCameraInfoMsg(*info_, &has_distortion);
   if (!intrinsics.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", intrinsics.status().message().c_str());
+    SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: %s", intrinsics.status().message().c_str());
     return std::nullopt;
   }
   if (has_distortion) {
@@ -113,7 +114,8 @@ void RgbdDetector::Wait(std::deque<sensor_msgs::ImageConstPtr>* waiting,
   waiting->push_back(message);
   if (waiting->size() <= kWaitingImages) return;
   waiting->pop_front();
-  ROS_WARN_THROTTLE(5.0, "semchain_ros: a %s image found no partner with its stamp; dropped", what);
+  SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: a %s image found no partner with its stamp; dropped",
+                         what);
 }
 
 std::optional<RgbdDetections> RgbdDetector::OnColorImage(
@@ -140,13 +142,13 @@ std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& mes
                                                    const sensor_msgs::Image& depth_message) {
   Result<cv::Mat> rgb = ColorFromImageMsg(message);
   if (!rgb.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
+    SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: %s", rgb.status().message().c_str());
     return std::nullopt;
   }
   constexpr double kMillimetre = 0.001;
   Result<cv::Mat> depth = DepthFromImageMsg(depth_message, kMillimetre);
   if (!depth.ok() || depth->size() != rgb->size()) {
-    ROS_WARN_THROTTLE(
+    SEMCHAIN_WARN_THROTTLE(
         5.0, "semchain_ros: depth image unusable (%s)",
         depth.ok() ? "not the colour image's size" : depth.status().message().c_str());
     return std::nullopt;
@@ -160,7 +162,8 @@ std::optional<RgbdDetections> RgbdDetector::Detect(const sensor_msgs::Image& mes
   frame.detect_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (!detections.ok()) {
-    ROS_WARN_THROTTLE(5.0, "semchain_ros: detector: %s", detections.status().message().c_str());
+    SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: detector: %s",
+                           detections.status().message().c_str());
     return std::nullopt;
   }
   const std::optional<MountedCamera> camera = camera_ ? camera_() : std::nullopt;

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "ros/log_throttle.h"
+
 namespace semchain::ros1 {
 
 ScanInput::ScanInput(::ros::NodeHandle nh, const std::string& topic, std::uint32_t queue_size,
@@ -82,8 +84,8 @@ void ScanInput::OnDropped(const sensor_msgs::LaserScanConstPtr& scan,
                     : reason == tf2_ros::filter_failure_reasons::EmptyFrameID
                         ? "no frame_id"
                         : "tf did not know where the robot was at its stamp in time";
-  ROS_WARN_THROTTLE(5.0, "semchain_ros: scan at %.3f (frame '%s') dropped: %s",
-                    scan->header.stamp.toSec(), scan->header.frame_id.c_str(), why);
+  SEMCHAIN_WARN_THROTTLE(5.0, "semchain_ros: scan at %.3f (frame '%s') dropped: %s",
+                         scan->header.stamp.toSec(), scan->header.frame_id.c_str(), why);
 }
 
 void ScanInput::Rescue(const ::ros::WallTime& now) {
