@@ -34,8 +34,8 @@
 //   subscribes  /scan, tf odom → base_link (laser and camera frames from tf),
 //               /camera/color/camera_info, /semchain/detections (one detections.jsonl record
 //               per message) or, with ~detector, /camera/color/image_raw + /camera/depth/image_raw
-//               (the detector runs on a thread of its own, DetectorThread: scans never wait for
-//               it; its frames reach the semantic mapper in stamp order)
+//               (the detector and the semantic mapper run on a thread of their own,
+//               DetectorThread: scans never wait for them; frames reach the mapper in stamp order)
 //   publishes   latched /map every ~map_update_interval s of scan time, tf map → odom (the best
 //               particle's pose ∘ odometry⁻¹) after every scan, /semchain/objects with /map
 //   offers      /semchain/save_map (std_srvs/Trigger): the map folder to ~out, atomically; the
@@ -43,7 +43,8 @@
 namespace semchain::ros1 {
 
 struct MappingTimings {
-  std::vector<double> cpu_ms;     // thread CPU per scan: SLAM and the semantic mapper
+  std::vector<double> cpu_ms;     // thread CPU per scan: SLAM (and the semantic mapper when no
+                                  // ~detector: it then runs on the scans' thread)
   std::vector<double> detect_ms;  // wall time of ~detector per camera frame
   double semantic_seconds = 0.0;  // thread CPU of the semantic mapper advancing on the trajectory
   double snapshot_seconds = 0.0;  // thread CPU of the objects' snapshots for /semchain/objects
@@ -91,7 +92,7 @@ class MappingNode {
   bool Acceptable(const StampedScan& scan) const;
   void Feed(const StampedScan& scan);
   // Maps the frames the trajectory now poses ('corrected': SLAM's filter has updated, mapped
-  // frames may move); on the frames' thread, with mutex_ not held.
+  // frames may move); on the frames' thread (the detector's or the main one). Takes mutex_.
   void AdvanceSemantic(bool corrected);
   std::vector<StampedPose> Trajectory() const;  // a copy, under trajectory_mutex_
   // Gives the semantic mapper a frame (on the thread of its source: the detector's or the main
