@@ -35,11 +35,12 @@ run_node() {
 
 rosparam set /semchain_ros/particles 20
 run_node _mode:=mapping _out:="$work/mode_map" _seed:=3 _save_on_shutdown:=false \
-  _min_detection_score:=0.6 || fail "the mapping run did not exit cleanly"
+  _min_detection_score:=0.6 _frame_queue_size:=30 || fail "the mapping run did not exit cleanly"
 grep -q "semchain_ros: mapping (~mode: command line), out $work/mode_map" "$log" ||
   fail "no start-up line saying the mode and where it came from"
 grep -q "particles 20," "$log" || fail "the start-up line does not give ~particles"
 grep -q "min_detection_score 0.6," "$log" || fail "the start-up line does not give ~min_detection_score"
+grep -q "frame_queue_size 30," "$log" || fail "the start-up line does not give ~frame_queue_size"
 [ "$(params)" = "/semchain_ros/particles " ] ||
   fail "parameters left after the run: $(params) (expected only ~particles)"
 echo "ok: the command line's ~mode, ~out, ~seed deleted at exit, ~particles kept"
@@ -50,6 +51,12 @@ fi
 grep -q "parameter ~min_detection_score: must be in \[0, 1\]" "$log" ||
   fail "no error naming ~min_detection_score"
 echo "ok: ~min_detection_score is on the start-up line and checked"
+
+if run_node _mode:=mapping _out:="$work/mode_map" _frame_queue_size:=0; then
+  fail "~frame_queue_size 0 did not stop the node"
+fi
+grep -q "parameter ~frame_queue_size: must be >= 1" "$log" || fail "no error naming ~frame_queue_size"
+echo "ok: ~frame_queue_size is on the start-up line and checked"
 
 rosparam set /semchain_ros/mode mapping
 if run_node _map:="$work/map"; then fail "a stale ~mode mapping with _map:= did not stop the node"; fi
