@@ -167,22 +167,29 @@ void MappingNode::Feed(const StampedScan& scan) {
   }
   // The semantic mapper is the detector thread's when there is one: the scans never wait for
   // it (a snapshot of hundreds of frames takes hundreds of milliseconds).
+  const auto advance = [this, corrected = step.processed] {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    AdvanceSemantic(corrected);
+  };
   if (detector_thread_) {
-    detector_thread_->Post([this, processed = step.processed] { AdvanceSemantic(processed); });
+    detector_thread_->Post(advance);
   } else {
-    AdvanceSemantic(step.processed);
+    advance();
   }
 }
 
 void MappingNode::AdvanceSemantic(bool corrected) {
-  const std::lock_guard<std::mutex> lock(mutex_);
   if (!semantic_) return;
-  const std::vector<StampedPose> trajectory = Trajectory();
-  if (trajectory.empty()) return;
+  std::optional<double> latest;
+  {
+    const std::lock_guard<std::mutex> lock(trajectory_mutex_);
+    if (!trajectory_.empty()) latest = trajectory_.back().timestamp;
+  }
   // As `slam --semantic` does: frames wait for a pose; a filter update may move mapped ones.
-  if (!corrected && semantic_->next_stamp() > trajectory.back().timestamp) return;
+  // Most scans pose no new frame: the trajectory is copied only when one is.
+  if (!latest || (!corrected && semantic_->next_stamp() > *latest)) return;
   const double cpu_start = ThreadCpuSeconds();
-  const Status advanced = semantic_->Advance(trajectory, corrected, {});
+  const Status advanced = semantic_->Advance(Trajectory(), corrected, {});
   timings_.semantic_seconds += ThreadCpuSeconds() - cpu_start;
   if (!advanced.ok()) ROS_ERROR("semchain_ros: %s", advanced.message().c_str());
 }
@@ -284,11 +291,7 @@ void MappingNode::MapAwaitingFrames(const MountedCamera& camera) {
   frames_awaiting_camera_.clear();
   // A frame the detector hands over after the scans of its time were fed (the detector is
   // slower than the scans, or the bag has ended) is mapped now: no later scan may come to map it.
-  const std::vector<StampedPose> trajectory = Trajectory();
-  if (!trajectory.empty() && semantic_->next_stamp() <= trajectory.back().timestamp) {
-    const Status advanced = semantic_->Advance(trajectory, false, {});
-    if (!advanced.ok()) ROS_ERROR("semchain_ros: %s", advanced.message().c_str());
-  }
+  AdvanceSemantic(false);
 }
 
 void MappingNode::OnDetections(const std_msgs::StringConstPtr& message) {

@@ -92,7 +92,7 @@ class MappingNode {
   bool Acceptable(const StampedScan& scan) const;
   void Feed(const StampedScan& scan);
   // Maps the frames the trajectory now poses ('corrected': SLAM's filter has updated, mapped
-  // frames may move); on the frames' thread (the detector's or the main one). Takes mutex_.
+  // frames may move); on the frames' thread (the detector's or the main one), with mutex_ held.
   void AdvanceSemantic(bool corrected);
   std::vector<StampedPose> Trajectory() const;  // a copy, under trajectory_mutex_
   // Gives the semantic mapper a frame (on the thread of its source: the detector's or the main
