@@ -1,12 +1,13 @@
 // semchain bench closures --log L.clf (--relations R | --reference POSES | --perturb-odometry N)
-//     [--config C.yaml] [--particles N] [--seed S] --out DIR
+//     [--config C.yaml] [--particles N] [--seed S] [--oracle] --out DIR
 // Runs SLAM with the pose graph on, records every match its loop-closure searches score
 // (LoopClosureOptions::record_candidates) and labels each by the reference: true when its
 // relative pose is within 0.3 m and 2° of the reference's between the two nodes' scans
 // (eval/closure_reference.h). Writes DIR/closures.csv (a row a candidate), DIR/results.json and
 // DIR/results.md (precision and recall at each score threshold: the score alone, after
 // verification, after the back end), DIR/precision_recall.png and DIR/trajectory.txt, with the
-// run's aligned ATE (reference poses) or relation errors (relations).
+// run's aligned ATE (reference poses) or relation errors (relations). With --oracle the
+// reference verifies the closures (LoopClosureOptions::oracle): what a perfect verifier gives.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -40,6 +41,7 @@ struct BenchClosuresArgs {
   std::optional<int> perturb_seed, particles, seed, threads, max_scans;
   double record_min_score = 0.4;
   double min_weight = 0.5;
+  bool oracle = false;
   eval::ClosureLabelOptions label;
   eval::ClosureReferenceOptions reference_options;
 };
@@ -231,6 +233,7 @@ Status WriteResults(const BenchClosuresArgs& args, const mapping::SlamOptions& o
       {"record_min_score", args.record_min_score},
       {"min_score", options.loop_closure.min_score},
       {"min_weight", args.min_weight},
+      {"oracle_verification", args.oracle},
       {"loop_loss", LossName(options.loop_closure.optimizer.loop_loss)},
       {"label_max_translation_m", args.label.max_translation_meters},
       {"label_max_rotation_deg", RadToDeg(args.label.max_rotation_radians)},
@@ -265,12 +268,19 @@ int RunBenchClosures(const BenchClosuresArgs& args) {
     return ReportError(Status::Error(
         "bench closures: give exactly one of --relations, --reference, --perturb-odometry"));
   }
-  const Result<mapping::SlamOptions> options = BuildOptions(args);
+  Result<mapping::SlamOptions> options = BuildOptions(args);
   if (!options.ok()) return ReportError(options.status());
   const Status writable = EnsureWritableDirectory(args.out);
   if (!writable.ok()) return ReportError(writable);
   Result<Prepared> prepared = Prepare(args);
   if (!prepared.ok()) return ReportError(prepared.status());
+  if (args.oracle) {
+    // Only the closures the reference labels true go in: the map a perfect verifier would give.
+    const eval::ClosureReference* reference = prepared->reference.get();
+    options->loop_closure.oracle = [reference, &args](const mapping::LoopClosureCandidate& c) {
+      return eval::LabelCandidate(c, *reference, args.label).label == eval::ClosureLabel::kTrue;
+    };
+  }
   spdlog::info("bench closures: {} scans, {} particles, candidates scored down to {:.2f}",
                prepared->scans.size(), options->rbpf.particles, args.record_min_score);
   ProgressBar bar("slam", 2 * prepared->scans.size());
@@ -324,6 +334,9 @@ void AddBenchClosures(CLI::App& bench, int& exit_code) {
       ->add_option("--max-bridge-turn", args->reference_options.max_bridge_radians,
                    "...and turning (rad)")
       ->capture_default_str();
+  command->add_flag("--oracle", args->oracle,
+                    "Verify by the reference: a closure that passed the score goes into the "
+                    "graph only when it is true (the map a perfect verifier would give)");
   command->add_option("--out", args->out, "Output folder")->required();
   command->callback([args, &exit_code] { exit_code = bench_closures::RunBenchClosures(*args); });
 }

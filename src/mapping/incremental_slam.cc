@@ -77,13 +77,31 @@ std::vector<LoopClosureCandidate> WithScans(std::vector<LoopClosureCandidate> ca
   return candidates;
 }
 
+// 'oracle' (LoopClosureOptions::oracle, may be empty) called with the scan indices of the
+// candidate's nodes filled in from 'node_scans' (one per graph node; it outlives the result).
+std::function<bool(const LoopClosureCandidate&)> WithScanIndices(
+    const std::function<bool(const LoopClosureCandidate&)>& oracle,
+    const std::vector<int>* node_scans) {
+  if (!oracle) return {};
+  return [oracle, node_scans](const LoopClosureCandidate& candidate) {
+    LoopClosureCandidate with_scans = candidate;
+    with_scans.from_scan = (*node_scans)[static_cast<std::size_t>(candidate.from)];
+    with_scans.to_scan = (*node_scans)[static_cast<std::size_t>(candidate.to)];
+    return oracle(with_scans);
+  };
+}
+
 }  // namespace
 
 IncrementalSlam::IncrementalSlam(const SlamOptions& options)
     : options_(options),
       laser_odometry_(options.laser_odometry, options.rbpf.grid, options.rbpf.field),
       slam_(options.rbpf) {
-  if (options.pose_graph && options.loop_closure.online) loop_closer_.emplace(options.loop_closure);
+  if (options.pose_graph && options.loop_closure.online) {
+    LoopClosureOptions closer = options.loop_closure;
+    closer.oracle = WithScanIndices(options.loop_closure.oracle, &node_scans_);
+    loop_closer_.emplace(closer);
+  }
 }
 
 SlamStep IncrementalSlam::AddScan(const StampedScan& raw) {
@@ -308,11 +326,13 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
       node_scans.push_back(&prepared_[static_cast<std::size_t>(index)]);
       node_poses.push_back(pose);
     }
-    LoopClosureResult closed = CloseLoops(node_scans, node_poses, options_.loop_closure);
-    for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k].second = closed.poses[k];
-    result.loop_closure = std::move(closed.statistics);
     std::vector<int> node_indices;
     for (const auto& node : nodes) node_indices.push_back(node.first);
+    LoopClosureOptions closer = options_.loop_closure;
+    closer.oracle = WithScanIndices(options_.loop_closure.oracle, &node_indices);
+    LoopClosureResult closed = CloseLoops(node_scans, node_poses, closer);
+    for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k].second = closed.poses[k];
+    result.loop_closure = std::move(closed.statistics);
     result.loop_closure_candidates = WithScans(std::move(closed.candidates), node_indices);
     ReleaseFreeMemory();  // the graph's submaps, before the final map is built
   }

@@ -53,6 +53,18 @@ bool ReachesMinScore(double score, std::size_t points, double min_score) {
          static_cast<long long>(std::ceil(min_score * normalizer));
 }
 
+// A closure as the oracle (LoopClosureOptions::oracle) sees it.
+LoopClosureCandidate AsCandidate(const PoseGraphEdge& closure, double score) {
+  LoopClosureCandidate candidate;
+  candidate.from = closure.from;
+  candidate.to = closure.to;
+  candidate.score = score;
+  candidate.relative = closure.relative;
+  candidate.best_of_search = true;
+  candidate.passed_score = true;
+  return candidate;
+}
+
 }  // namespace
 
 struct LoopCloser::State {
@@ -228,6 +240,15 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   if (best.candidate >= 0) {
     candidates[static_cast<std::size_t>(best.candidate)].innovation_sigmas =
         std::sqrt(innovation_squared);
+  }
+  if (options.oracle) {
+    if (!options.oracle(AsCandidate(*closure, best.match.score))) {
+      ++stats.gated;
+      SetVerification(closure->id, ClosureVerification::kHeldBack);
+      return false;
+    }
+    AddClosure(*closure, innovation);
+    return true;
   }
   const double gate = options.gate_sigmas * options.gate_sigmas;
   const bool off_prediction = options.gate_sigmas > 0.0 && innovation_squared > gate;

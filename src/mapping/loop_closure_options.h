@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "mapping/branch_and_bound_matcher.h"
@@ -12,6 +13,8 @@
 // documented knobs are most of what the closer's header held, and a file that only holds or
 // checks them (SLAM options, their YAML keys) need not see the closer's own types.
 namespace semchain::mapping {
+
+struct LoopClosureCandidate;  // loop_closure.h
 
 struct LoopClosureOptions {
   // Nodes of this much travel form one submap.
@@ -145,6 +148,12 @@ struct LoopClosureOptions {
   // best pose above any lower bound), so the result does not change.
   bool record_candidates = false;
   double record_min_score = 0.4;
+  // Measurement only (`semchain bench closures --oracle`; not read from YAML): a closure that
+  // passed the score is added when this says it is true and dropped otherwise, in place of
+  // verification (gate and confirmation), to measure what the map would be with a perfect
+  // verifier. Called with the closure as a candidate (from, to, relative, score; the scan indices
+  // where the caller knows them).
+  std::function<bool(const LoopClosureCandidate&)> oracle;
 
   bool Validate(std::string* error) const;
 };

@@ -159,6 +159,46 @@ TEST(LoopClosureTest, WeakMatchesAreAddedOnlyWhenTheyAgree) {
   EXPECT_GT(testing::MaxPositionError(none.poses, run.truth), 1.5);
 }
 
+// The oracle (bench closures --oracle) replaces verification: a closure goes in exactly when it
+// says so, whatever the gate would have made of it. Here the gate holds back every closure
+// (gate_sigmas near 0, nothing to confirm it within 1 cm of travel): alone it adds none, with an
+// oracle that judges by the truth every closure it asked about and found true goes in, and one
+// that refuses everything leaves the filter's poses as they were.
+TEST(LoopClosureTest, AnOracleDecidesWhichClosuresGoIn) {
+  const LoopRun run = DriveTwoLaps(DegToRad(0.05));
+  LoopClosureOptions held;
+  held.gate_sigmas = 1e-3;
+  held.confirm_within_meters = 0.01;
+  const LoopClosureResult gated = CloseLoops(Pointers(run.scans), run.drifted, held);
+  ASSERT_GT(gated.statistics.found, 5);
+  EXPECT_EQ(gated.statistics.accepted, 0);
+
+  int asked = 0, said_true = 0;
+  LoopClosureOptions by_truth = held;
+  by_truth.oracle = [&](const LoopClosureCandidate& c) {
+    ++asked;
+    EXPECT_TRUE(c.passed_score && c.best_of_search);
+    EXPECT_GE(c.score, by_truth.min_score);
+    const Pose2 truth = run.truth[static_cast<std::size_t>(c.from)].Between(
+        run.truth[static_cast<std::size_t>(c.to)]);
+    const bool right = (c.relative.translation() - truth.translation()).norm() < 0.1;
+    said_true += right ? 1 : 0;
+    return right;
+  };
+  const LoopClosureResult judged = CloseLoops(Pointers(run.scans), run.drifted, by_truth);
+  EXPECT_EQ(asked, judged.statistics.found);
+  EXPECT_GE(said_true, 5);
+  EXPECT_EQ(judged.statistics.accepted + judged.statistics.rejected, said_true);
+  EXPECT_LT(testing::MaxPositionError(judged.poses, run.truth), 0.3);
+
+  LoopClosureOptions refusing = held;
+  refusing.oracle = [](const LoopClosureCandidate&) { return false; };
+  const LoopClosureResult none = CloseLoops(Pointers(run.scans), run.drifted, refusing);
+  EXPECT_GT(none.statistics.found, 5);
+  EXPECT_EQ(none.statistics.accepted, 0);
+  EXPECT_LT(testing::MaxPositionError(none.poses, run.drifted), 1e-9);
+}
+
 void ExpectSameResult(const LoopClosureResult& a, const LoopClosureResult& b) {
   EXPECT_EQ(a.statistics.found, b.statistics.found);
   EXPECT_EQ(a.statistics.accepted, b.statistics.accepted);

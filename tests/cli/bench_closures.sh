@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # bench closures on a simulated loop: every candidate in closures.csv, labelled by the run's
-# truth; the tables, the picture and the run's ATE written; a closure the graph kept is true.
+# truth; the tables, the picture and the run's ATE written; a closure the graph kept is true; with
+# --oracle only true closures go in.
 #   bench_closures.sh SEMCHAIN WORLD WORK_DIR
 set -euo pipefail
 semchain="$1"
@@ -36,6 +37,16 @@ kept=$(awk -F, 'NR > 1 && $16 == 1' bench/closures.csv | wc -l)
 [ "$kept" -ge 1 ] || { echo "FAIL: no closure kept"; exit 1; }
 grep -q '^| 0.65 | ' bench/results.md || { echo "FAIL: no 0.65 row"; cat bench/results.md; exit 1; }
 grep -q '"ate_rmse_aligned_m"' bench/results.json || { echo "FAIL: no aligned ATE"; exit 1; }
+
+# --oracle: the reference verifies, so every closure that went into the graph (column 14 added or
+# confirmed) is a true one.
+"$semchain" bench closures --log run/log.clf --reference run/truth.txt --config loops.yaml \
+  --particles 4 --seed 2 --oracle --out oracle >/dev/null 2>&1
+grep -q '"oracle_verification": true' oracle/results.json || { echo "FAIL: oracle not recorded"; exit 1; }
+added=$(awk -F, 'NR > 1 && ($14 == "added" || $14 == "confirmed")' oracle/closures.csv | wc -l)
+[ "$added" -ge 1 ] || { echo "FAIL: the oracle let no closure in"; exit 1; }
+awk -F, 'NR > 1 && ($14 == "added" || $14 == "confirmed") && $19 != "true" {bad++} END {exit bad > 0}' \
+  oracle/closures.csv || { echo "FAIL: the oracle let a false closure in"; exit 1; }
 
 # One reference, exactly.
 if "$semchain" bench closures --log run/log.clf --out none >/dev/null 2>err.txt; then
