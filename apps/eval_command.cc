@@ -1,4 +1,4 @@
-// `semchain eval relations|ate`: scores a trajectory and prints one JSON object (DESIGN.md §4).
+// `semchain eval relations|ate|rpe`: scores a trajectory and prints one JSON object (DESIGN.md §4).
 #include <iostream>
 #include <memory>
 #include <string>
@@ -6,6 +6,7 @@
 #include "apps/command.h"
 #include "eval/ate.h"
 #include "eval/relations.h"
+#include "eval/rpe.h"
 #include "io/trajectory_io.h"
 
 namespace semchain::app {
@@ -47,6 +48,20 @@ int RunAte(const std::string& poses_path, const std::string& truth_path,
     return ReportError(result.status().WithContext(poses_path + " against " + truth_path));
   }
   std::cout << eval::AteResultToJson(*result) << std::endl;
+  return 0;
+}
+
+int RunRpe(const std::string& poses_path, const std::string& truth_path,
+           const eval::RpeOptions& options) {
+  const Result<std::vector<StampedPose>> poses = ReadPoses(poses_path);
+  if (!poses.ok()) return ReportError(poses.status());
+  const Result<std::vector<StampedPose>> truth = ReadPoses(truth_path);
+  if (!truth.ok()) return ReportError(truth.status());
+  const Result<eval::RpeResult> result = eval::EvaluateRpe(*poses, *truth, options);
+  if (!result.ok()) {
+    return ReportError(result.status().WithContext(poses_path + " against " + truth_path));
+  }
+  std::cout << eval::RpeResultToJson(*result) << std::endl;
   return 0;
 }
 
@@ -105,13 +120,50 @@ void AddAte(CLI::App& eval, int& exit_code) {
       [args, &exit_code] { exit_code = RunAte(args->poses, args->truth, args->options); });
 }
 
+void AddRpe(CLI::App& eval, int& exit_code) {
+  CLI::App* command = eval.add_subcommand(
+      "rpe",
+      "Relative pose error over stretches of travel (drift between closures): median, p95 and "
+      "max of the translation (m) and rotation (deg) errors per stretch length, as one JSON "
+      "object");
+  struct Args {
+    std::string poses, truth;
+    eval::RpeOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  command->add_option("--poses", args->poses, "Estimated trajectory ('timestamp x y theta')")
+      ->required();
+  command->add_option("--truth", args->truth, "True trajectory, e.g. RUN/truth.txt")->required();
+  command
+      ->add_option("--travel", args->options.travel_meters,
+                   "Stretch lengths, metres travelled along the true path")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_flag("--pair-by-index", args->options.pairing.pair_by_index,
+                    "Pair the i-th pose with the i-th truth pose (same count; timestamps ignored)");
+  command
+      ->add_option("--tolerance", args->options.pairing.timestamp_tolerance_s,
+                   "Seconds within which the nearest truth pose is used as is")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--max-gap", args->options.pairing.max_interpolation_gap_s,
+                   "Longest gap (s) between truth poses to interpolate across")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->callback(
+      [args, &exit_code] { exit_code = RunRpe(args->poses, args->truth, args->options); });
+}
+
 }  // namespace
 
 void AddEvalCommand(CLI::App& app, int& exit_code) {
-  CLI::App* command = app.add_subcommand("eval", "Score a trajectory: relation metric or ATE");
+  CLI::App* command = app.add_subcommand("eval", "Score a trajectory: relation metric, ATE or RPE");
   command->require_subcommand(1);
   AddRelations(*command, exit_code);
   AddAte(*command, exit_code);
+  AddRpe(*command, exit_code);
 }
 
 }  // namespace semchain::app

@@ -51,9 +51,10 @@ Status CheckDistinctTimestamps(const std::vector<StampedPose>& truth) {
 
 }  // namespace
 
-Result<AteResult> EvaluateAte(const std::vector<StampedPose>& estimate,
-                              const std::vector<StampedPose>& truth, const AteOptions& options) {
-  std::vector<Pose2> estimated, reference;
+Result<PairedPoses> PairWithTruth(const std::vector<StampedPose>& estimate,
+                                  const std::vector<StampedPose>& truth,
+                                  const AteOptions& options) {
+  PairedPoses pairs;
   if (options.pair_by_index) {
     if (estimate.size() != truth.size()) {
       return Status::Error("pairing by index needs as many estimated poses as truth poses (" +
@@ -61,8 +62,8 @@ Result<AteResult> EvaluateAte(const std::vector<StampedPose>& estimate,
                            ")");
     }
     for (std::size_t i = 0; i < estimate.size(); ++i) {
-      estimated.push_back(estimate[i].pose);
-      reference.push_back(truth[i].pose);
+      pairs.estimated.push_back(estimate[i].pose);
+      pairs.reference.push_back(truth[i].pose);
     }
   } else {
     SEMCHAIN_RETURN_IF_ERROR(CheckDistinctTimestamps(truth));
@@ -71,17 +72,26 @@ Result<AteResult> EvaluateAte(const std::vector<StampedPose>& estimate,
       const std::optional<Pose2> true_pose =
           lookup.At(pose.timestamp, options.timestamp_tolerance_s, options.max_interpolation_gap_s);
       if (!true_pose) continue;
-      estimated.push_back(pose.pose);
-      reference.push_back(*true_pose);
+      pairs.estimated.push_back(pose.pose);
+      pairs.reference.push_back(*true_pose);
     }
   }
-  AteResult result;
-  result.poses = estimate.size();
-  result.matched = estimated.size();
-  if (result.matched == 0) {
+  if (pairs.estimated.empty()) {
     return Status::Error("none of the " + std::to_string(estimate.size()) +
                          " estimated poses has a truth pose at its time");
   }
+  return pairs;
+}
+
+Result<AteResult> EvaluateAte(const std::vector<StampedPose>& estimate,
+                              const std::vector<StampedPose>& truth, const AteOptions& options) {
+  Result<PairedPoses> pairs = PairWithTruth(estimate, truth, options);
+  if (!pairs.ok()) return pairs.status();
+  const std::vector<Pose2>& estimated = pairs->estimated;
+  const std::vector<Pose2>& reference = pairs->reference;
+  AteResult result;
+  result.poses = estimate.size();
+  result.matched = estimated.size();
   if (options.align) result.alignment = FitRigidTransform2D(estimated, reference);
   double sum_sq = 0.0, sum = 0.0, sum_rot_sq = 0.0;
   for (std::size_t i = 0; i < estimated.size(); ++i) {

@@ -43,6 +43,15 @@ struct AteResult {
 // 'from' and 'to' have the same size (at least 1).
 Pose2 FitRigidTransform2D(const std::vector<Pose2>& from, const std::vector<Pose2>& to);
 
+// The estimate's poses and the truth's at the same times (or indices), as AteOptions pairs them.
+struct PairedPoses {
+  std::vector<Pose2> estimated;
+  std::vector<Pose2> reference;
+};
+// Fails as EvaluateAte does (no pose matches, lengths differ by index, truth timestamps shared).
+Result<PairedPoses> PairWithTruth(const std::vector<StampedPose>& estimate,
+                                  const std::vector<StampedPose>& truth, const AteOptions& options);
+
 // Scores 'estimate' against 'truth' (both in any order, unless paired by index). Fails when no
 // pose matches, when paired by index and the lengths differ, and when pairing by time and two
 // truth poses share a timestamp (the pairing would be arbitrary).
