@@ -34,35 +34,44 @@ int RunRelations(const std::string& poses_path, const std::string& relations_pat
   return 0;
 }
 
+// Scores the trajectory at 'poses_path' against the one at 'truth_path' with 'evaluate' (which
+// returns a Result of what 'to_json' prints).
+template <typename Evaluate, typename ToJson>
+int ScoreAgainstTruth(const std::string& poses_path, const std::string& truth_path,
+                      const Evaluate& evaluate, const ToJson& to_json) {
+  const Result<std::vector<StampedPose>> poses = ReadPoses(poses_path);
+  if (!poses.ok()) return ReportError(poses.status());
+  const Result<std::vector<StampedPose>> truth = ReadPoses(truth_path);
+  if (!truth.ok()) return ReportError(truth.status());
+  const auto result = evaluate(*poses, *truth);
+  if (!result.ok()) {
+    return ReportError(result.status().WithContext(poses_path + " against " + truth_path));
+  }
+  std::cout << to_json(*result) << std::endl;
+  return 0;
+}
+
 int RunAte(const std::string& poses_path, const std::string& truth_path,
            const eval::AteOptions& options) {
   if (!(options.timestamp_tolerance_s >= 0.0) || !(options.max_interpolation_gap_s >= 0.0)) {
     return ReportError(Status::Error("--tolerance and --max-gap must be >= 0 seconds"));
   }
-  const Result<std::vector<StampedPose>> poses = ReadPoses(poses_path);
-  if (!poses.ok()) return ReportError(poses.status());
-  const Result<std::vector<StampedPose>> truth = ReadPoses(truth_path);
-  if (!truth.ok()) return ReportError(truth.status());
-  const Result<eval::AteResult> result = eval::EvaluateAte(*poses, *truth, options);
-  if (!result.ok()) {
-    return ReportError(result.status().WithContext(poses_path + " against " + truth_path));
-  }
-  std::cout << eval::AteResultToJson(*result) << std::endl;
-  return 0;
+  return ScoreAgainstTruth(
+      poses_path, truth_path,
+      [&](const auto& poses, const auto& truth) {
+        return eval::EvaluateAte(poses, truth, options);
+      },
+      eval::AteResultToJson);
 }
 
 int RunRpe(const std::string& poses_path, const std::string& truth_path,
            const eval::RpeOptions& options) {
-  const Result<std::vector<StampedPose>> poses = ReadPoses(poses_path);
-  if (!poses.ok()) return ReportError(poses.status());
-  const Result<std::vector<StampedPose>> truth = ReadPoses(truth_path);
-  if (!truth.ok()) return ReportError(truth.status());
-  const Result<eval::RpeResult> result = eval::EvaluateRpe(*poses, *truth, options);
-  if (!result.ok()) {
-    return ReportError(result.status().WithContext(poses_path + " against " + truth_path));
-  }
-  std::cout << eval::RpeResultToJson(*result) << std::endl;
-  return 0;
+  return ScoreAgainstTruth(
+      poses_path, truth_path,
+      [&](const auto& poses, const auto& truth) {
+        return eval::EvaluateRpe(poses, truth, options);
+      },
+      eval::RpeResultToJson);
 }
 
 void AddRelations(CLI::App& eval, int& exit_code) {
