@@ -11,6 +11,7 @@
 #include "mapping/chain_uncertainty.h"
 #include "mapping/loop_closure_geometry.h"
 #include "mapping/loop_closure_submaps.h"
+#include "mapping/match_covariance.h"
 #include "mapping/ray_casting.h"
 
 namespace semchain::mapping {
@@ -234,7 +235,11 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
       closure->relative, estimate[static_cast<std::size_t>(closure->from)].Between(estimate[i]));
   innovation.motion = best.uncertainty.motion;
   innovation.fixed = best.uncertainty.fixed;
-  innovation.fixed.diagonal() += LoopVariances(options);
+  if (closure->covariance.isZero()) {
+    innovation.fixed.diagonal() += LoopVariances(options);
+  } else {
+    innovation.fixed += closure->covariance;
+  }
   const double innovation_squared =
       SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed);
   if (best.candidate >= 0) {
@@ -378,6 +383,11 @@ std::optional<PoseGraphEdge> LoopCloser::State::ClosureOf(
   if (closure.id >= 0) candidates[static_cast<std::size_t>(closure.id)].passed_score = true;
   closure.sigmas = Eigen::Vector3d(options.loop_sigma_meters, options.loop_sigma_meters,
                                    options.loop_sigma_radians);
+  if (options.match_covariance) {
+    closure.covariance =
+        MatchCovariance(*best.submap->match_grid, points, closure.relative, options.covariance);
+    closure.covariance.diagonal() += LoopVariances(options);
+  }
   closure.loop_closure = true;
   return closure;
 }

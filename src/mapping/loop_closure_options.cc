@@ -90,6 +90,7 @@ bool LoopClosureOptions::Validate(std::string* error) const {
       !refinement.Validate(error)) {
     return false;
   }
+  if (match_covariance && !covariance.Validate(error)) return false;
   return optimizer.Validate(error);
 }
 

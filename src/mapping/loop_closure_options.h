@@ -5,6 +5,7 @@
 
 #include "mapping/branch_and_bound_matcher.h"
 #include "mapping/ceres_scan_matcher.h"
+#include "mapping/match_covariance.h"
 #include "mapping/match_grid.h"
 #include "mapping/occupancy_grid.h"
 #include "mapping/pose_graph.h"
@@ -100,6 +101,12 @@ struct LoopClosureOptions {
   // The branch-and-bound pose (on the cell and angle grid) refined on the submap, as
   // Cartographer refines its loop closures.
   CeresScanMatcherOptions refinement;
+  // A closure's covariance from its match's score around it (match_covariance.h, as Karto's),
+  // plus the loop sigmas below, instead of those sigmas alone: a match down a corridor then
+  // says where across the corridor the node is, not where along it. Off by default
+  // (docs/experiments.md, "Pose graph").
+  bool match_covariance = false;
+  MatchCovarianceOptions covariance;
   // Uncertainties of the edges: consecutive nodes (standard deviations growing with the motion)
   // and loop closures; they also size the search window and the gate above.
   double odometry_sigma_meters = 0.02;

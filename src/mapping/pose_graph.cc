@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/Cholesky>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -42,11 +43,19 @@ T NormalizeAngleT(const T& angle) {
   return angle - two_pi * ceres::floor((angle + T(M_PI)) / two_pi);
 }
 
-// r = W · (measured ⊖ (pose_from⁻¹ ⊕ pose_to)), with W = diag(1/σ).
+// W with WᵀW the inverse of the edge's covariance: diag(1/σ), or L⁻¹ for a full Σ = LLᵀ.
+Eigen::Matrix3d WhiteningOf(const PoseGraphEdge& edge) {
+  if (edge.covariance.isZero()) return edge.sigmas.cwiseInverse().asDiagonal();
+  const Eigen::LLT<Eigen::Matrix3d> llt(edge.covariance);
+  SEMCHAIN_CHECK(llt.info() == Eigen::Success);
+  return llt.matrixL().solve(Eigen::Matrix3d::Identity());
+}
+
+// r = W · (measured ⊖ (pose_from⁻¹ ⊕ pose_to)).
 class RelativePoseCost {
  public:
-  RelativePoseCost(const Pose2& measured, const Eigen::Vector3d& sigmas)
-      : measured_(measured), weights_(sigmas.cwiseInverse()) {}
+  explicit RelativePoseCost(const PoseGraphEdge& edge)
+      : measured_(edge.relative), whitening_(WhiteningOf(edge)) {}
 
   template <typename T>
   bool operator()(const T* const from, const T* const to, T* residuals) const {
@@ -58,15 +67,18 @@ class RelativePoseCost {
     const T x = cos_from * dx + sin_from * dy;
     const T y = -sin_from * dx + cos_from * dy;
     const T theta = to[2] - from[2];
-    residuals[0] = T(weights_.x()) * (x - T(measured_.x));
-    residuals[1] = T(weights_.y()) * (y - T(measured_.y));
-    residuals[2] = T(weights_.z()) * NormalizeAngleT(theta - T(measured_.theta));
+    const T error[3] = {x - T(measured_.x), y - T(measured_.y),
+                        NormalizeAngleT(theta - T(measured_.theta))};
+    for (int row = 0; row < 3; ++row) {
+      residuals[row] = T(whitening_(row, 0)) * error[0] + T(whitening_(row, 1)) * error[1] +
+                       T(whitening_(row, 2)) * error[2];
+    }
     return true;
   }
 
  private:
   Pose2 measured_;
-  Eigen::Vector3d weights_;
+  Eigen::Matrix3d whitening_;
 };
 
 }  // namespace
@@ -77,7 +89,7 @@ Eigen::Vector3d WhitenedResidual(const PoseGraphEdge& edge, const std::vector<Po
   const double from[3] = {a.x, a.y, a.theta};
   const double to[3] = {b.x, b.y, b.theta};
   Eigen::Vector3d residual;
-  RelativePoseCost(edge.relative, edge.sigmas)(from, to, residual.data());
+  RelativePoseCost{edge}(from, to, residual.data());
   return residual;
 }
 
@@ -96,8 +108,8 @@ ceres::Solver::Summary Solve(const std::vector<PoseGraphEdge>& edges,
   ceres::Problem problem(problem_options);
   for (const PoseGraphEdge& edge : edges) {
     if (edge.from == edge.to) continue;
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseCost, 3, 3, 3>(
-        new RelativePoseCost(edge.relative, edge.sigmas));
+    auto* cost =
+        new ceres::AutoDiffCostFunction<RelativePoseCost, 3, 3, 3>(new RelativePoseCost(edge));
     problem.AddResidualBlock(cost, edge.loop_closure ? loop_loss : nullptr,
                              (*parameters)[static_cast<std::size_t>(edge.from)].data(),
                              (*parameters)[static_cast<std::size_t>(edge.to)].data());

@@ -22,6 +22,10 @@ struct PoseGraphEdge {
   Pose2 relative;  // pose of 'to' in the frame of 'from'
   // Standard deviations of the relative pose's x, y (metres) and θ (radians).
   Eigen::Vector3d sigmas = Eigen::Vector3d(0.05, 0.05, 0.01);
+  // When not zero, the full covariance of (x, y, θ), used instead of 'sigmas': a closure
+  // matched down a corridor is certain across it and not along it (LoopClosureOptions::
+  // match_covariance).
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   bool loop_closure = false;
   int id = -1;  // the caller's label (e.g. which loop-closure candidate the edge came from)
 };
@@ -87,7 +91,8 @@ GatedPoseGraphSolution OptimizeRejectingInconsistent(const std::vector<Pose2>& i
                                                      const PoseGraphOptions& options = {});
 
 // The edge's residual at 'poses' whitened by its sigmas: (Δx/σx, Δy/σy, Δθ/σθ) of the measured
-// relative pose against the one 'poses' give, Δ in the frame of 'from'.
+// relative pose against the one 'poses' give, Δ in the frame of 'from' (with a covariance Σ,
+// L⁻¹Δ for Σ = LLᵀ, so that its squared norm is ΔᵀΣ⁻¹Δ).
 Eigen::Vector3d WhitenedResidual(const PoseGraphEdge& edge, const std::vector<Pose2>& poses);
 
 }  // namespace semchain::mapping

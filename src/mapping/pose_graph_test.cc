@@ -77,6 +77,25 @@ TEST(PoseGraphTest, WhitenedResidualOfAnAnalyticCase) {
   EXPECT_NEAR(r.z(), 2.0, 1e-9);
 }
 
+// A full covariance replaces the sigmas: with σ = 2 m along a direction at 45° in the frame of
+// 'from' and 0.05 m across it, an error of 1 m along it whitens to 0.5 and 0.1 m across to 2.
+TEST(PoseGraphTest, AFullCovarianceWhitensAlongItsAxes) {
+  const std::vector<Pose2> poses = {Pose2(0.0, 0.0, 0.0), Pose2(3.0, 3.0, 0.0)};
+  const Eigen::Vector2d along(std::sqrt(0.5), std::sqrt(0.5));
+  const Eigen::Vector2d across(-along.y(), along.x());
+  PoseGraphEdge edge;
+  edge.from = 0;
+  edge.to = 1;
+  edge.covariance.topLeftCorner<2, 2>() =
+      4.0 * along * along.transpose() + 0.0025 * across * across.transpose();
+  edge.covariance(2, 2) = 1e-4;
+  for (const auto& [offset, expected] :
+       {std::pair{Eigen::Vector2d(along), 0.5}, std::pair{Eigen::Vector2d(0.1 * across), 2.0}}) {
+    edge.relative = Pose2(3.0 - offset.x(), 3.0 - offset.y(), 0.0);
+    EXPECT_NEAR(WhitenedResidual(edge, poses).norm(), expected, 1e-9);
+  }
+}
+
 TEST(PoseGraphTest, LoopClosuresRemoveTheDrift) {
   const std::vector<Pose2> truth = SquareTruth();
   std::vector<Pose2> initial;

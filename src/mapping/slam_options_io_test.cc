@@ -53,6 +53,10 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(l.confirm_min_separation_meters, d.confirm_min_separation_meters);
   EXPECT_EQ(l.unknown_is_neutral, d.unknown_is_neutral);
   EXPECT_DOUBLE_EQ(l.min_known_fraction, d.min_known_fraction);
+  EXPECT_EQ(l.match_covariance, d.match_covariance);
+  EXPECT_DOUBLE_EQ(l.covariance.window_meters, d.covariance.window_meters);
+  EXPECT_DOUBLE_EQ(l.covariance.window_radians, d.covariance.window_radians);
+  EXPECT_DOUBLE_EQ(l.covariance.score_drop, d.covariance.score_drop);
   EXPECT_DOUBLE_EQ(l.query_travel_meters, d.query_travel_meters);
   EXPECT_DOUBLE_EQ(l.query_cell_meters, d.query_cell_meters);
   EXPECT_DOUBLE_EQ(l.max_linear_window_meters, d.max_linear_window_meters);
