@@ -126,8 +126,12 @@ std::string ClosuresMarkdown(const nlohmann::json& r) {
      << "`; reference: " << r["reference"].get<std::string>()
      << "; config: " << r["config"].get<std::string>() << "; " << r["particles"]
      << " particles, seed " << r["seed"] << "; " << closures_report::Fixed(r["slam_seconds"], 1)
-     << " s\n\n"
-     << "A candidate is the best match of one submap searched from one node (score ≥ "
+     << " s\n\n";
+  if (r.value("oracle_verification", false)) {
+    md << "**Oracle verification** (`--oracle`): the reference, not the loop closer, decided which "
+          "closures went into the graph.\n\n";
+  }
+  md << "A candidate is the best match of one submap searched from one node (score ≥ "
      << closures_report::Fixed(r["record_min_score"], 2)
      << "), labelled true when its relative pose is within "
      << closures_report::Fixed(r["label_max_translation_m"], 2) << " m and "

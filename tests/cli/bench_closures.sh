@@ -43,6 +43,8 @@ grep -q '"ate_rmse_aligned_m"' bench/results.json || { echo "FAIL: no aligned AT
 "$semchain" bench closures --log run/log.clf --reference run/truth.txt --config loops.yaml \
   --particles 4 --seed 2 --oracle --out oracle >/dev/null 2>&1
 grep -q '"oracle_verification": true' oracle/results.json || { echo "FAIL: oracle not recorded"; exit 1; }
+grep -q 'Oracle verification' oracle/results.md || { echo "FAIL: results.md does not say oracle"; exit 1; }
+if grep -q 'Oracle verification' bench/results.md; then echo "FAIL: oracle said without it"; exit 1; fi
 added=$(awk -F, 'NR > 1 && ($14 == "added" || $14 == "confirmed")' oracle/closures.csv | wc -l)
 [ "$added" -ge 1 ] || { echo "FAIL: the oracle let no closure in"; exit 1; }
 awk -F, 'NR > 1 && ($14 == "added" || $14 == "confirmed") && $19 != "true" {bad++} END {exit bad > 0}' \
