@@ -162,8 +162,8 @@ TEST(LoopClosureTest, WeakMatchesAreAddedOnlyWhenTheyAgree) {
 // The oracle (bench closures --oracle) replaces verification: a closure goes in exactly when it
 // says so, whatever the gate would have made of it. Here the gate holds back every closure
 // (gate_sigmas near 0, nothing to confirm it within 1 cm of travel): alone it adds none, with an
-// oracle that judges by the truth every closure it asked about and found true goes in, and one
-// that refuses everything leaves the filter's poses as they were.
+// oracle that judges by the truth every closure it found true goes in, and one that refuses
+// everything leaves the filter's poses as they were (fed until it has refused three).
 TEST(LoopClosureTest, AnOracleDecidesWhichClosuresGoIn) {
   const LoopRun run = DriveTwoLaps(DegToRad(0.05));
   LoopClosureOptions held;
@@ -189,14 +189,22 @@ TEST(LoopClosureTest, AnOracleDecidesWhichClosuresGoIn) {
   EXPECT_EQ(asked, judged.statistics.found);
   EXPECT_GE(said_true, 5);
   EXPECT_EQ(judged.statistics.accepted + judged.statistics.rejected, said_true);
+  EXPECT_EQ(judged.statistics.gated, asked - said_true);
   EXPECT_LT(testing::MaxPositionError(judged.poses, run.truth), 0.3);
 
   LoopClosureOptions refusing = held;
   refusing.oracle = [](const LoopClosureCandidate&) { return false; };
-  const LoopClosureResult none = CloseLoops(Pointers(run.scans), run.drifted, refusing);
-  EXPECT_GT(none.statistics.found, 5);
-  EXPECT_EQ(none.statistics.accepted, 0);
-  EXPECT_LT(testing::MaxPositionError(none.poses, run.drifted), 1e-9);
+  LoopCloser closer(refusing);
+  std::size_t fed = 0;
+  while (fed < run.scans.size() && closer.statistics().found < 3) {
+    closer.AddNode(run.scans[fed], run.drifted[fed]);
+    ++fed;
+  }
+  ASSERT_EQ(closer.statistics().found, 3);
+  EXPECT_EQ(closer.statistics().accepted, 0);
+  const std::vector<Pose2> given(run.drifted.begin(),
+                                 run.drifted.begin() + static_cast<std::ptrdiff_t>(fed));
+  EXPECT_LT(testing::MaxPositionError(closer.estimate(), given), 1e-9);
 }
 
 void ExpectSameResult(const LoopClosureResult& a, const LoopClosureResult& b) {

@@ -28,8 +28,10 @@ std::vector<Eigen::Vector2d> ScanPoints(const std::vector<testing::Segment>& wor
 TEST(MatchCovarianceTest, AMatchInARoomIsCertainEveryWay) {
   const MatchGrid grid = MakeMatchGrid(testing::RoomMap());
   const Pose2 pose(-1.1, 0.4, 0.3);
+  MatchCovarianceOptions options;
+  options.window_meters = 1.0;  // a room's width: the default ±8 m costs 60 times the poses
   const Eigen::Matrix3d covariance =
-      MatchCovariance(grid, ScanPoints(testing::RoomWorld(), pose, 12.0), pose);
+      MatchCovariance(grid, ScanPoints(testing::RoomWorld(), pose, 12.0), pose, options);
   EXPECT_LT(std::sqrt(covariance(0, 0)), 0.06);
   EXPECT_LT(std::sqrt(covariance(1, 1)), 0.06);
   EXPECT_LT(std::sqrt(covariance(2, 2)), DegToRad(1.0));
