@@ -34,11 +34,15 @@ int RunRelations(const std::string& poses_path, const std::string& relations_pat
   return 0;
 }
 
-// Scores the trajectory at 'poses_path' against the one at 'truth_path' with 'evaluate' (which
-// returns a Result of what 'to_json' prints).
+// Scores the trajectory at 'poses_path' against the one at 'truth_path', paired by 'pairing',
+// with 'evaluate' (which returns a Result of what 'to_json' prints).
 template <typename Evaluate, typename ToJson>
 int ScoreAgainstTruth(const std::string& poses_path, const std::string& truth_path,
-                      const Evaluate& evaluate, const ToJson& to_json) {
+                      const eval::AteOptions& pairing, const Evaluate& evaluate,
+                      const ToJson& to_json) {
+  if (!(pairing.timestamp_tolerance_s >= 0.0) || !(pairing.max_interpolation_gap_s >= 0.0)) {
+    return ReportError(Status::Error("--tolerance and --max-gap must be >= 0 seconds"));
+  }
   const Result<std::vector<StampedPose>> poses = ReadPoses(poses_path);
   if (!poses.ok()) return ReportError(poses.status());
   const Result<std::vector<StampedPose>> truth = ReadPoses(truth_path);
@@ -51,27 +55,23 @@ int ScoreAgainstTruth(const std::string& poses_path, const std::string& truth_pa
   return 0;
 }
 
-int RunAte(const std::string& poses_path, const std::string& truth_path,
-           const eval::AteOptions& options) {
-  if (!(options.timestamp_tolerance_s >= 0.0) || !(options.max_interpolation_gap_s >= 0.0)) {
-    return ReportError(Status::Error("--tolerance and --max-gap must be >= 0 seconds"));
-  }
-  return ScoreAgainstTruth(
-      poses_path, truth_path,
-      [&](const auto& poses, const auto& truth) {
-        return eval::EvaluateAte(poses, truth, options);
-      },
-      eval::AteResultToJson);
-}
-
-int RunRpe(const std::string& poses_path, const std::string& truth_path,
-           const eval::RpeOptions& options) {
-  return ScoreAgainstTruth(
-      poses_path, truth_path,
-      [&](const auto& poses, const auto& truth) {
-        return eval::EvaluateRpe(poses, truth, options);
-      },
-      eval::RpeResultToJson);
+// The options of a trajectory scored against the truth: the two files and how they are paired.
+void AddTrajectoryPairOptions(CLI::App* command, std::string* poses, std::string* truth,
+                              eval::AteOptions* pairing) {
+  command->add_option("--poses", *poses, "Estimated trajectory ('timestamp x y theta')")
+      ->required();
+  command->add_option("--truth", *truth, "True trajectory, e.g. RUN/truth.txt")->required();
+  command->add_flag("--pair-by-index", pairing->pair_by_index,
+                    "Score the i-th pose against the i-th truth pose (same count; timestamps "
+                    "ignored): for logs whose timestamps cannot pair the poses");
+  command
+      ->add_option("--tolerance", pairing->timestamp_tolerance_s,
+                   "Seconds within which the nearest truth pose is used as is")
+      ->capture_default_str();
+  command
+      ->add_option("--max-gap", pairing->max_interpolation_gap_s,
+                   "Longest gap (s) between truth poses to interpolate across")
+      ->capture_default_str();
 }
 
 void AddRelations(CLI::App& eval, int& exit_code) {
@@ -109,24 +109,17 @@ void AddAte(CLI::App& eval, int& exit_code) {
     eval::AteOptions options;
   };
   auto args = std::make_shared<Args>();
-  command->add_option("--poses", args->poses, "Estimated trajectory ('timestamp x y theta')")
-      ->required();
-  command->add_option("--truth", args->truth, "True trajectory, e.g. RUN/truth.txt")->required();
+  AddTrajectoryPairOptions(command, &args->poses, &args->truth, &args->options);
   command->add_flag("--align", args->options.align,
                     "First fit the estimate to the truth with the best SE(2) transform");
-  command->add_flag("--pair-by-index", args->options.pair_by_index,
-                    "Score the i-th pose against the i-th truth pose (same count; timestamps "
-                    "ignored): for logs whose timestamps cannot pair the poses");
-  command
-      ->add_option("--tolerance", args->options.timestamp_tolerance_s,
-                   "Seconds within which the nearest truth pose is used as is")
-      ->capture_default_str();
-  command
-      ->add_option("--max-gap", args->options.max_interpolation_gap_s,
-                   "Longest gap (s) between truth poses to interpolate across")
-      ->capture_default_str();
-  command->callback(
-      [args, &exit_code] { exit_code = RunAte(args->poses, args->truth, args->options); });
+  command->callback([args, &exit_code] {
+    exit_code = ScoreAgainstTruth(
+        args->poses, args->truth, args->options,
+        [&](const auto& poses, const auto& truth) {
+          return eval::EvaluateAte(poses, truth, args->options);
+        },
+        eval::AteResultToJson);
+  });
 }
 
 void AddRpe(CLI::App& eval, int& exit_code) {
@@ -140,29 +133,21 @@ void AddRpe(CLI::App& eval, int& exit_code) {
     eval::RpeOptions options;
   };
   auto args = std::make_shared<Args>();
-  command->add_option("--poses", args->poses, "Estimated trajectory ('timestamp x y theta')")
-      ->required();
-  command->add_option("--truth", args->truth, "True trajectory, e.g. RUN/truth.txt")->required();
+  AddTrajectoryPairOptions(command, &args->poses, &args->truth, &args->options.pairing);
   command
       ->add_option("--travel", args->options.travel_meters,
                    "Stretch lengths, metres travelled along the true path")
       ->delimiter(',')
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_flag("--pair-by-index", args->options.pairing.pair_by_index,
-                    "Pair the i-th pose with the i-th truth pose (same count; timestamps ignored)");
-  command
-      ->add_option("--tolerance", args->options.pairing.timestamp_tolerance_s,
-                   "Seconds within which the nearest truth pose is used as is")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--max-gap", args->options.pairing.max_interpolation_gap_s,
-                   "Longest gap (s) between truth poses to interpolate across")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command->callback(
-      [args, &exit_code] { exit_code = RunRpe(args->poses, args->truth, args->options); });
+  command->callback([args, &exit_code] {
+    exit_code = ScoreAgainstTruth(
+        args->poses, args->truth, args->options.pairing,
+        [&](const auto& poses, const auto& truth) {
+          return eval::EvaluateRpe(poses, truth, args->options);
+        },
+        eval::RpeResultToJson);
+  });
 }
 
 }  // namespace

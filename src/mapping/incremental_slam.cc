@@ -67,13 +67,16 @@ int LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans
   return matched.load();
 }
 
-// 'candidates' with the scan indices of their nodes ('node_scans', one per graph node).
+// 'candidate' with the scan indices of its nodes ('node_scans', one per graph node).
+LoopClosureCandidate WithScans(LoopClosureCandidate candidate, const std::vector<int>& node_scans) {
+  candidate.from_scan = node_scans[static_cast<std::size_t>(candidate.from)];
+  candidate.to_scan = node_scans[static_cast<std::size_t>(candidate.to)];
+  return candidate;
+}
+
 std::vector<LoopClosureCandidate> WithScans(std::vector<LoopClosureCandidate> candidates,
                                             const std::vector<int>& node_scans) {
-  for (LoopClosureCandidate& candidate : candidates) {
-    candidate.from_scan = node_scans[static_cast<std::size_t>(candidate.from)];
-    candidate.to_scan = node_scans[static_cast<std::size_t>(candidate.to)];
-  }
+  for (LoopClosureCandidate& candidate : candidates) candidate = WithScans(candidate, node_scans);
   return candidates;
 }
 
@@ -84,10 +87,7 @@ std::function<bool(const LoopClosureCandidate&)> WithScanIndices(
     const std::vector<int>* node_scans) {
   if (!oracle) return {};
   return [oracle, node_scans](const LoopClosureCandidate& candidate) {
-    LoopClosureCandidate with_scans = candidate;
-    with_scans.from_scan = (*node_scans)[static_cast<std::size_t>(candidate.from)];
-    with_scans.to_scan = (*node_scans)[static_cast<std::size_t>(candidate.to)];
-    return oracle(with_scans);
+    return oracle(WithScans(candidate, *node_scans));
   };
 }
 

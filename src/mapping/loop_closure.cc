@@ -234,12 +234,7 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   innovation.error = PoseError(
       closure->relative, estimate[static_cast<std::size_t>(closure->from)].Between(estimate[i]));
   innovation.motion = best.uncertainty.motion;
-  innovation.fixed = best.uncertainty.fixed;
-  if (closure->covariance.isZero()) {
-    innovation.fixed.diagonal() += LoopVariances(options);
-  } else {
-    innovation.fixed += closure->covariance;
-  }
+  innovation.fixed = best.uncertainty.fixed + CovarianceOf(*closure);
   const double innovation_squared =
       SquaredMahalanobis(innovation.error, innovation.motion + innovation.fixed);
   if (best.candidate >= 0) {

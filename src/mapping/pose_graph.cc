@@ -83,6 +83,11 @@ class RelativePoseCost {
 
 }  // namespace
 
+Eigen::Matrix3d CovarianceOf(const PoseGraphEdge& edge) {
+  if (!edge.covariance.isZero()) return edge.covariance;
+  return edge.sigmas.cwiseProduct(edge.sigmas).asDiagonal();
+}
+
 Eigen::Vector3d WhitenedResidual(const PoseGraphEdge& edge, const std::vector<Pose2>& poses) {
   const Pose2& a = poses[static_cast<std::size_t>(edge.from)];
   const Pose2& b = poses[static_cast<std::size_t>(edge.to)];

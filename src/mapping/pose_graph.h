@@ -90,6 +90,9 @@ GatedPoseGraphSolution OptimizeRejectingInconsistent(const std::vector<Pose2>& i
                                                      double max_residual_sigmas,
                                                      const PoseGraphOptions& options = {});
 
+// The edge's covariance of (x, y, θ): its 'covariance', or diag(sigmas²) when that is zero.
+Eigen::Matrix3d CovarianceOf(const PoseGraphEdge& edge);
+
 // The edge's residual at 'poses' whitened by its sigmas: (Δx/σx, Δy/σy, Δθ/σθ) of the measured
 // relative pose against the one 'poses' give, Δ in the frame of 'from' (with a covariance Σ,
 // L⁻¹Δ for Σ = LLᵀ, so that its squared norm is ΔᵀΣ⁻¹Δ).
