@@ -312,7 +312,7 @@ void AddSlamCommand(CLI::App& app, int& exit_code) {
   CLI::Option* pose_graph_on =
       command->add_flag("--pose-graph", args->pose_graph_on,
                         "Loop closures and sparse pose adjustment behind the filter (config "
-                        "pose_graph.enabled; off by default)");
+                        "pose_graph.enabled; on by default)");
   command->add_flag("--no-pose-graph", args->pose_graph_off, "The plain filter (no pose graph)")
       ->excludes(pose_graph_on);
   command->add_option("--depth", args->depth_run,

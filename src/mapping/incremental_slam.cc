@@ -49,6 +49,16 @@ OccupancyGrid BuildMap(const std::vector<PreparedScan>& scans, const std::vector
   return map;
 }
 
+// The map of the scans at 'nodes' (scan index, pose).
+OccupancyGrid BuildNodeMap(const std::vector<PreparedScan>& scans,
+                           const std::vector<std::pair<int, Pose2>>& nodes,
+                           const OccupancyGridOptions& options) {
+  OccupancyGrid map(options);
+  for (const auto& [index, pose] : nodes)
+    InsertScan(scans[static_cast<std::size_t>(index)], pose, &map);
+  return map;
+}
+
 // Localizes every scan in 'map' from 'poses' (updated in place); returns how many matched.
 int LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans,
                 const SlamOptions& options, std::vector<Pose2>* poses,
@@ -337,8 +347,11 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     ReleaseFreeMemory();  // the graph's submaps, before the final map is built
   }
   std::vector<Pose2> poses = InterpolatedPoses(scans_, scans_.size(), nodes);
-  result.map =
-      options_.pose_graph ? BuildMap(prepared_, poses, options_.rbpf.grid) : std::move(filter_map);
+  // With the pose graph, the map the scans are localized in is made of the same scans as the
+  // filter's, at their optimized poses: the scans in between, at interpolated poses, would
+  // blur it (Intel: relation error 0.0155 m instead of 0.0138 m).
+  result.map = options_.pose_graph ? BuildNodeMap(prepared_, nodes, options_.rbpf.grid)
+                                   : std::move(filter_map);
   if (options_.every_scan.method == "localize") {
     auto tick = [&](std::size_t) {
       if (progress) progress(scans_.size() + scans_.size());

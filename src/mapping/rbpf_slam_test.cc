@@ -118,6 +118,30 @@ TEST(SlamPipelineTest, EveryScanGetsAnAccuratePose) {
   }
 }
 
+// A pose graph that closes no loop must leave the result as the filter alone gives it: the map
+// the scans are localized in is made of the filter's scans at the nodes' poses, not of every
+// scan at poses interpolated between them.
+TEST(SlamPipelineTest, APoseGraphWithoutClosuresLeavesTheFilterAsItIs) {
+  const testing::SimulatedRun run = testing::SimulateRoomRun(0.2);
+  SlamOptions options;
+  options.rbpf = SmallFilter(6);
+  options.pose_graph = false;
+  const SlamResult alone = RunSlam(run.scans, options);
+  options.pose_graph = true;
+  options.loop_closure.min_score = 1.0;  // no match scores that
+  const SlamResult graph = RunSlam(run.scans, options);
+  EXPECT_EQ(graph.loop_closure.accepted, 0);
+  ASSERT_LT(alone.processed.size(), run.scans.size());  // else there is nothing in between
+  ASSERT_EQ(graph.trajectory.size(), alone.trajectory.size());
+  for (std::size_t i = 0; i < alone.trajectory.size(); ++i) {
+    // The graph hands its nodes back through its own arithmetic: equal up to rounding.
+    EXPECT_NEAR(graph.trajectory[i].pose.x, alone.trajectory[i].pose.x, 1e-9) << i;
+    EXPECT_NEAR(graph.trajectory[i].pose.y, alone.trajectory[i].pose.y, 1e-9) << i;
+    EXPECT_NEAR(graph.trajectory[i].pose.theta, alone.trajectory[i].pose.theta, 1e-9) << i;
+  }
+  EXPECT_EQ(GridToMapImage(graph.map).cells, GridToMapImage(alone.map).cells);
+}
+
 // Finishing an IncrementalSlam for good drops its particles before the final map is built
 // (memory); what it returns must be what finishing it and keeping it returns.
 TEST(SlamPipelineTest, FinishingForGoodGivesWhatFinishingAndKeepingGives) {
