@@ -114,7 +114,8 @@ LoopRun DriveTwoLaps(double drift_radians_per_meter) {
 // loose along its corridor and the heading drift's error there stays:
 // ClosingTheLoopsRemovesTheDrift ends 0.42 m off instead of under 0.3 m. The tests of verification
 // and of the optimizer need closures that pull; the covariances have their own tests
-// (match_covariance_test.cc).
+// (match_covariance_test.cc), and their ±8 m window costs minutes per run of this loop under the
+// sanitizers.
 LoopClosureOptions SigmaClosures() {
   LoopClosureOptions options;
   options.match_covariance = false;
@@ -236,7 +237,7 @@ void ExpectSameResult(const LoopClosureResult& a, const LoopClosureResult& b) {
 // many as a tiny memory budget allows gives the same closures and the same poses.
 TEST(LoopClosureTest, TheBuiltSubmapCacheDoesNotChangeTheResult) {
   const LoopRun run = DriveTwoLaps(DegToRad(0.05));
-  LoopClosureOptions one, all, tight;
+  LoopClosureOptions one = SigmaClosures(), all = SigmaClosures(), tight = SigmaClosures();
   one.max_built_submaps = 1;
   all.max_built_submaps = 1000;
   all.max_built_submaps_megabytes = 1e6;
@@ -309,7 +310,7 @@ TEST(LoopClosureTest, ClosuresThatAgreeWithTheFilterDoNotBendIt) {
 
 TEST(LoopClosureTest, NoDriftNoHarm) {
   const LoopRun run = DriveTwoLaps(0.0);
-  const LoopClosureResult result = CloseLoops(Pointers(run.scans), run.drifted, {});
+  const LoopClosureResult result = CloseLoops(Pointers(run.scans), run.drifted, SigmaClosures());
   EXPECT_GE(result.statistics.accepted, 1);
   EXPECT_LT(testing::MaxPositionError(result.poses, run.truth), 0.1)
       << result.statistics.found << " found, " << result.statistics.accepted << " accepted, "
@@ -407,7 +408,7 @@ double RmsPositionError(const std::vector<Pose2>& poses, const std::vector<Pose2
 // 15 m turn by 0.75 degrees over their length.
 TEST(LoopClosureTest, ReoptimizingOnABetterLineKeepsTheClosuresAndTakesTheLine) {
   const LoopRun run = DriveTwoLaps(DegToRad(0.05));
-  LoopCloser closer(LoopClosureOptions{});
+  LoopCloser closer(SigmaClosures());
   for (std::size_t i = 0; i < run.scans.size(); ++i) closer.AddNode(run.scans[i], run.drifted[i]);
   const LoopClosureStatistics before = closer.statistics();
   ASSERT_GE(before.accepted, 5);
@@ -421,7 +422,7 @@ TEST(LoopClosureTest, ReoptimizingOnABetterLineKeepsTheClosuresAndTakesTheLine) 
 
 TEST(LoopClosureTest, RebaseMakesTheEstimateTheFiltersPoses) {
   const LoopRun run = DriveTwoLaps(DegToRad(0.05));
-  LoopCloser closer(LoopClosureOptions{});
+  LoopCloser closer(SigmaClosures());
   std::size_t i = 0;
   for (; i < run.scans.size() && closer.statistics().accepted == 0; ++i) {
     closer.AddNode(run.scans[i], run.drifted[i]);
