@@ -264,5 +264,19 @@ TEST_F(BranchAndBoundTest, CellScoreIsTheBranchAndBoundScore) {
   EXPECT_EQ(CellScore(grid_, {}, truth), 0.0);
 }
 
+// With a bar, a pose reaching it scores exactly as without one; one that cannot is dropped (-1).
+TEST_F(BranchAndBoundTest, CellScoreIfAtLeastKeepsWhatReachesTheBar) {
+  const Pose2 truth(-0.62, 1.35, -2.4);
+  const std::vector<Eigen::Vector2d> points = ScanPoints(truth);
+  const Pose2 off(truth.x + 0.5, truth.y, truth.theta + 0.3);
+  const double at_truth = CellScore(grid_, points, truth);
+  const double at_off = CellScore(grid_, points, off);
+  ASSERT_GT(at_truth, at_off);
+  EXPECT_EQ(CellScoreIfAtLeast(grid_, points, truth, at_truth), at_truth);
+  EXPECT_EQ(CellScoreIfAtLeast(grid_, points, off, at_off), at_off);
+  EXPECT_EQ(CellScoreIfAtLeast(grid_, points, off, at_off + 0.01), -1.0);
+  EXPECT_EQ(CellScoreIfAtLeast(grid_, points, off, at_truth), -1.0);
+}
+
 }  // namespace
 }  // namespace semchain::mapping

@@ -24,29 +24,6 @@ bool MatchCovarianceOptions::Validate(std::string* error) const {
   return true;
 }
 
-namespace {
-
-// CellScore of 'points' at 'pose', or -1 as soon as even every remaining point scoring the
-// grid's maximum (M = 1) could not lift it to 'at_least': where it returns a score, the same
-// value as CellScore, and most poses of a wide window are dropped after part of their points.
-double ScoreIfAtLeast(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
-                      const Pose2& pose, double at_least) {
-  if (points.empty()) return 0.0;
-  const Eigen::Isometry2d transform = pose.ToIsometry();
-  const double count = static_cast<double>(points.size());
-  // A hair below the bound, so that rounding never drops a pose CellScore would keep.
-  const double needed = at_least * count - 1e-9 * count;
-  double sum = 0.0;
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector2i cell = grid.CellOf(transform * points[k]);
-    sum += grid.At(cell.x(), cell.y());
-    if (sum + static_cast<double>(points.size() - k - 1) < needed) return -1.0;
-  }
-  return sum / count;
-}
-
-}  // namespace
-
 Eigen::Matrix3d MatchCovariance(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
                                 const Pose2& match, const MatchCovarianceOptions& options) {
   std::string error;
@@ -69,8 +46,8 @@ Eigen::Matrix3d MatchCovariance(const MatchGrid& grid, const std::vector<Eigen::
         const Eigen::Vector3d offset(ix * options.linear_step_meters,
                                      iy * options.linear_step_meters, dtheta);
         const double score =
-            ScoreIfAtLeast(grid, turned, Pose2(match.x + offset.x(), match.y + offset.y(), 0.0),
-                           best - options.score_drop);
+            CellScoreIfAtLeast(grid, turned, Pose2(match.x + offset.x(), match.y + offset.y(), 0.0),
+                               best - options.score_drop);
         if (score < best - options.score_drop) continue;
         sum += score * offset * offset.transpose();
         weights += score;

@@ -1,6 +1,7 @@
 #include "mapping/match_grid.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/check.h"
 #include "mapping/distance_field.h"
@@ -45,14 +46,23 @@ MatchGrid MakeMatchGrid(const MapImage& map, const MatchGridOptions& options) {
 
 double CellScore(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
                  const Pose2& pose) {
+  return CellScoreIfAtLeast(grid, points, pose, -std::numeric_limits<double>::infinity());
+}
+
+double CellScoreIfAtLeast(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
+                          const Pose2& pose, double at_least) {
   if (points.empty()) return 0.0;
   const Eigen::Isometry2d transform = pose.ToIsometry();
+  const double count = static_cast<double>(points.size());
+  // A hair below the bound, so that rounding never drops a pose whose mean reaches it.
+  const double needed = at_least * count - 1e-9 * count;
   double sum = 0.0;
-  for (const Eigen::Vector2d& p : points) {
-    const Eigen::Vector2i cell = grid.CellOf(transform * p);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector2i cell = grid.CellOf(transform * points[k]);
     sum += grid.At(cell.x(), cell.y());
+    if (sum + static_cast<double>(points.size() - k - 1) < needed) return -1.0;
   }
-  return sum / static_cast<double>(points.size());
+  return sum / count;
 }
 
 }  // namespace semchain::mapping

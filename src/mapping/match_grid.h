@@ -62,4 +62,10 @@ MatchGrid MakeMatchGrid(const MapImage& map, const MatchGridOptions& options = {
 double CellScore(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
                  const Pose2& pose);
 
+// CellScore, or -1 as soon as even every remaining point scoring M = 1 could not lift the mean
+// to 'at_least': where it returns a score, the same value as CellScore, and a pose far off is
+// dropped after part of its points (the match covariance scores a window of ~10⁵ poses).
+double CellScoreIfAtLeast(const MatchGrid& grid, const std::vector<Eigen::Vector2d>& points,
+                          const Pose2& pose, double at_least);
+
 }  // namespace semchain::mapping
