@@ -209,6 +209,7 @@ nlohmann::json PoseGraphJson(const mapping::LoopClosureStatistics& l) {
           {"closures_accepted", l.accepted},
           {"closures_rejected", l.rejected},
           {"closures_gated", l.gated},
+          {"motion_edges_loosened", l.loosened},
           {"search_seconds", l.search_seconds},
           {"optimizer_seconds", l.optimizer_seconds}};
 }

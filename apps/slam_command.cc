@@ -103,6 +103,7 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
                           {"closures_accepted", l.accepted},
                           {"closures_rejected", l.rejected},
                           {"closures_gated", l.gated},
+                          {"motion_edges_loosened", l.loosened},
                           {"optimizations", l.optimizations},
                           {"online", options.loop_closure.online},
                           {"follows", l.follows},
@@ -239,9 +240,10 @@ void LogStatistics(const SlamInputs& inputs, const SlamRun& run) {
   const mapping::LoopClosureStatistics& l = result.loop_closure;
   spdlog::info(
       "slam: pose graph: {} nodes, {} submaps, loop closures {} found, {} accepted, {} "
-      "rejected by the other closures, {} not added (off the motion's prediction); search "
-      "{:.1f} s (submaps built for it: {:.0f} MB at most), optimizer {:.2f} s",
-      l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.gated, l.search_seconds,
+      "rejected by the other closures, {} not added (off the motion's prediction); {} motion "
+      "edges loosened where the filter snapped onto older map; search {:.1f} s (submaps built "
+      "for it: {:.0f} MB at most), optimizer {:.2f} s",
+      l.nodes, l.submaps, l.found, l.accepted, l.rejected, l.gated, l.loosened, l.search_seconds,
       l.built_submaps_peak_megabytes, l.optimizer_seconds);
   if (inputs.options.loop_closure.online) {
     spdlog::info("slam: pose graph online: the particles followed it {} times", l.follows);

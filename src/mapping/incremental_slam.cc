@@ -118,9 +118,13 @@ SlamStep IncrementalSlam::AddScan(const StampedScan& raw) {
   auto start = std::chrono::steady_clock::now();
   prepared_.push_back(PrepareScan(raw.scan, raw.LaserOffset(), options_.rbpf.scan));
   StampedScan scan = raw;
+  const bool snap_check = options_.pose_graph && options_.loop_closure.snap_sigmas > 0.0;
   if (options_.laser_odometry.enabled) {
     scan.odometry = laser_odometry_.Add(raw, prepared_.back());
     scan.laser_pose = scan.odometry * raw.LaserOffset();
+    if (snap_check) local_poses_.push_back(scan.odometry);
+  } else if (snap_check) {
+    local_poses_.push_back(laser_odometry_.Add(raw, prepared_.back()));
   }
   scans_.push_back(scan);
   laser_odometry_seconds_ += SecondsSince(start);
@@ -162,6 +166,8 @@ std::vector<IncrementalSlam::GraphInput> IncrementalSlam::NewGraphNodes(std::siz
     input.scan = prepared_[static_cast<std::size_t>(input.scan_index)];
     input.first = fed == 0 && j == 0;
     input.pose = input.first ? lineage[j]->pose : lineage[j - 1]->pose.Between(lineage[j]->pose);
+    if (!local_poses_.empty())
+      input.local = local_poses_[static_cast<std::size_t>(input.scan_index)];
     inputs.push_back(std::move(input));
   }
   return inputs;
@@ -172,7 +178,7 @@ bool IncrementalSlam::FeedGraph(const std::vector<GraphInput>& inputs, LoopClose
   bool optimized = false;
   for (const GraphInput& input : inputs) {
     const Pose2 pose = input.first ? input.pose : closer->filter_poses().back() * input.pose;
-    optimized |= closer->AddNode(input.scan, pose);
+    optimized |= closer->AddNode(input.scan, pose, input.local);
   }
   if (!optimized) return false;
   const std::vector<Pose2>& estimate = closer->estimate();
@@ -332,15 +338,18 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
   } else if (options_.pose_graph) {
     std::vector<const PreparedScan*> node_scans;
     std::vector<Pose2> node_poses;
+    std::vector<Pose2> local_poses;
     for (const auto& [index, pose] : nodes) {
       node_scans.push_back(&prepared_[static_cast<std::size_t>(index)]);
       node_poses.push_back(pose);
+      if (!local_poses_.empty())
+        local_poses.push_back(local_poses_[static_cast<std::size_t>(index)]);
     }
     std::vector<int> node_indices;
     for (const auto& node : nodes) node_indices.push_back(node.first);
     LoopClosureOptions closer = options_.loop_closure;
     closer.oracle = WithScanIndices(options_.loop_closure.oracle, &node_indices);
-    LoopClosureResult closed = CloseLoops(node_scans, node_poses, closer);
+    LoopClosureResult closed = CloseLoops(node_scans, node_poses, local_poses, closer);
     for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k].second = closed.poses[k];
     result.loop_closure = std::move(closed.statistics);
     result.loop_closure_candidates = WithScans(std::move(closed.candidates), node_indices);

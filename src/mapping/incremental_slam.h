@@ -86,6 +86,7 @@ class IncrementalSlam {
     PreparedScan scan;
     Pose2 pose;
     bool first = false;
+    std::optional<Pose2> local;  // the scan's local pose, with the snap check
   };
   // The nodes the graph may take now: those the filter is 'lag' nodes past, not yet in it.
   std::vector<GraphInput> NewGraphNodes(std::size_t lag) const;
@@ -111,6 +112,9 @@ class IncrementalSlam {
   RbpfSlam slam_;
   std::vector<PreparedScan> prepared_;
   std::vector<StampedScan> scans_;
+  // With the pose graph's snap check (LoopClosureOptions::snap_sigmas), each scan's laser-odometry
+  // pose: the filter's own odometry, or computed beside it when the filter runs on wheel odometry.
+  std::vector<Pose2> local_poses_;
   // With the online pose graph: the graph and the scan index of each of its nodes.
   mutable std::optional<LoopCloser> loop_closer_;
   mutable std::vector<int> node_scans_;

@@ -22,6 +22,7 @@ using internal::Finish;
 using internal::Innovation;
 using internal::KnownAgreement;
 using internal::LoopVariances;
+using internal::LoosenSnap;
 using internal::MotionEdge;
 using internal::MotionNoiseScale;
 using internal::PoseError;
@@ -76,7 +77,11 @@ struct LoopCloser::State {
   // The match points of each node's scan (robot frame): all a search needs of it once it is in
   // its submap (a fifth of the scan's memory).
   std::vector<std::vector<Eigen::Vector2d>> node_points;
-  std::vector<Pose2> poses;     // the filter's, one per node (rebased when the filter follows)
+  std::vector<Pose2> poses;  // the filter's, one per node (rebased when the filter follows)
+  // A local estimate of each node's pose (laser odometry), where given: only its steps count.
+  std::vector<std::optional<Pose2>> local;
+  // Per node: the motion edge from it was loosened by LoosenSnap.
+  std::vector<bool> loosened;
   std::vector<Pose2> estimate;  // the graph's
   std::vector<PoseGraphEdge> edges;
   std::vector<double> travel;
@@ -102,11 +107,15 @@ struct LoopCloser::State {
     int candidate = -1;               // its recorded candidate (record_candidates)
   };
 
-  bool Add(const PreparedScan& scan, const Pose2& pose);
-  // Appends node i, the one 'scan' and 'pose' are of: its match points, the filter's pose, the
-  // travel to it and, after the first, the motion edge from node i − 1 and the graph's pose.
-  // Returns i.
-  std::size_t AppendNode(const PreparedScan& scan, const Pose2& pose);
+  bool Add(const PreparedScan& scan, const Pose2& pose, const std::optional<Pose2>& local_pose);
+  // Appends node i, the one 'scan' and 'pose' are of: its match points, the filter's pose and
+  // its local estimate, the travel to it and, after the first, the motion edge from node i − 1
+  // and the graph's pose. Returns i.
+  std::size_t AppendNode(const PreparedScan& scan, const Pose2& pose,
+                         const std::optional<Pose2>& local_pose);
+  // The motion edge from node 'from' to the next at the filter's poses 'a' and 'b', loosened
+  // where the filter snapped (marked in 'loosened').
+  PoseGraphEdge MotionEdgeFrom(std::size_t from, const Pose2& a, const Pose2& b);
   // Puts node i's scan into the open submap, first finishing it and opening the next once it
   // spans submap_travel_meters.
   void InsertIntoSubmap(const PreparedScan& scan, std::size_t i);
@@ -149,8 +158,9 @@ LoopCloser::~LoopCloser() = default;
 LoopCloser::LoopCloser(LoopCloser&&) noexcept = default;
 LoopCloser& LoopCloser::operator=(LoopCloser&&) noexcept = default;
 
-bool LoopCloser::AddNode(const PreparedScan& scan, const Pose2& filter_pose) {
-  return state_->Add(scan, filter_pose);
+bool LoopCloser::AddNode(const PreparedScan& scan, const Pose2& filter_pose,
+                         const std::optional<Pose2>& local_pose) {
+  return state_->Add(scan, filter_pose, local_pose);
 }
 
 const std::vector<Pose2>& LoopCloser::estimate() const { return state_->estimate; }
@@ -179,8 +189,8 @@ void LoopCloser::Reoptimize(const std::vector<Pose2>& filter_poses) {
       closures = true;
       continue;
     }
-    edge = MotionEdge(edge.from, filter_poses[static_cast<std::size_t>(edge.from)],
-                      filter_poses[static_cast<std::size_t>(edge.to)], state.options);
+    const auto from = static_cast<std::size_t>(edge.from);
+    edge = state.MotionEdgeFrom(from, filter_poses[from], filter_poses[from + 1]);
   }
   state.poses = filter_poses;
   if (!closures) {
@@ -193,6 +203,8 @@ void LoopCloser::Reoptimize(const std::vector<Pose2>& filter_poses) {
 LoopClosureStatistics LoopCloser::statistics() const {
   LoopClosureStatistics stats = state_->stats;
   stats.nodes = static_cast<int>(state_->estimate.size());
+  stats.loosened =
+      static_cast<int>(std::count(state_->loosened.begin(), state_->loosened.end(), true));
   stats.motion_noise_scale = state_->scale;
   stats.submaps = static_cast<int>(state_->submaps.size());
   for (const PoseGraphEdge& edge : state_->edges) {
@@ -216,8 +228,9 @@ std::vector<LoopClosureCandidate> LoopCloser::candidates() const {
   return candidates;
 }
 
-bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
-  const std::size_t i = AppendNode(scan, pose);
+bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose,
+                            const std::optional<Pose2>& local_pose) {
+  const std::size_t i = AppendNode(scan, pose, local_pose);
   InsertIntoSubmap(scan, i);
   if (i % static_cast<std::size_t>(options.search_every_nodes) != 0) return false;
   const auto search_start = std::chrono::steady_clock::now();
@@ -258,10 +271,13 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose) {
   return true;
 }
 
-std::size_t LoopCloser::State::AppendNode(const PreparedScan& scan, const Pose2& pose) {
+std::size_t LoopCloser::State::AppendNode(const PreparedScan& scan, const Pose2& pose,
+                                          const std::optional<Pose2>& local_pose) {
   node_points.push_back(
       SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step).points);
   poses.push_back(pose);
+  local.push_back(local_pose);
+  loosened.push_back(false);
   const std::size_t i = poses.size() - 1;
   if (i == 0) {
     estimate.push_back(poses[0]);
@@ -269,11 +285,18 @@ std::size_t LoopCloser::State::AppendNode(const PreparedScan& scan, const Pose2&
     chain.emplace(poses[0]);
   } else {
     travel.push_back(travel[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm());
-    edges.push_back(MotionEdge(static_cast<int>(i) - 1, poses[i - 1], poses[i], options));
+    edges.push_back(MotionEdgeFrom(i - 1, poses[i - 1], poses[i]));
     estimate.push_back(estimate[i - 1] * edges.back().relative);
     chain->Append(estimate.back(), edges.back().sigmas.x(), edges.back().sigmas.z());
   }
   return i;
+}
+
+PoseGraphEdge LoopCloser::State::MotionEdgeFrom(std::size_t from, const Pose2& a, const Pose2& b) {
+  PoseGraphEdge edge = MotionEdge(static_cast<int>(from), a, b, options);
+  loosened[from] = local[from].has_value() && local[from + 1].has_value() &&
+                   LoosenSnap(local[from]->Between(*local[from + 1]), options, &edge);
+  return edge;
 }
 
 void LoopCloser::State::InsertIntoSubmap(const PreparedScan& scan, std::size_t i) {
@@ -455,8 +478,9 @@ void LoopCloser::State::AddClosure(const PoseGraphEdge& closure, const Innovatio
 }
 
 std::vector<int> LoopCloser::State::Optimize(const std::vector<Pose2>& initial) {
-  const GatedPoseGraphSolution gated = OptimizeRejectingInconsistent(
-      initial, ScaledMotion(edges, scale), options.max_residual_sigmas, options.optimizer);
+  const GatedPoseGraphSolution gated =
+      OptimizeRejectingInconsistent(initial, ScaledMotion(edges, scale, loosened),
+                                    options.max_residual_sigmas, options.optimizer);
   ++stats.optimizations;
   stats.optimizer_seconds += gated.solution.seconds;
   std::vector<bool> drop(edges.size(), false);
@@ -474,16 +498,26 @@ std::vector<int> LoopCloser::State::Optimize(const std::vector<Pose2>& initial) 
 }
 
 LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
-                             const std::vector<Pose2>& poses, const LoopClosureOptions& options,
+                             const std::vector<Pose2>& poses, const std::vector<Pose2>& local_poses,
+                             const LoopClosureOptions& options,
                              const std::function<void(std::size_t)>& progress) {
   SEMCHAIN_CHECK(scans.size() == poses.size());
+  SEMCHAIN_CHECK(local_poses.empty() || local_poses.size() == poses.size());
   LoopCloser closer(options);
   for (std::size_t i = 0; i < poses.size(); ++i) {
     if (progress && i > 0) progress(i);
-    closer.AddNode(*scans[i], poses[i]);
+    std::optional<Pose2> local;
+    if (!local_poses.empty()) local = local_poses[i];
+    closer.AddNode(*scans[i], poses[i], local);
   }
   if (progress) progress(poses.size());
   return {closer.estimate(), closer.statistics(), closer.candidates()};
+}
+
+LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
+                             const std::vector<Pose2>& poses, const LoopClosureOptions& options,
+                             const std::function<void(std::size_t)>& progress) {
+  return CloseLoops(scans, poses, {}, options, progress);
 }
 
 }  // namespace semchain::mapping

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/pose2.h"
@@ -10,7 +11,8 @@
 #include "mapping/prepared_scan.h"
 
 // The pose graph behind the particle filter (DESIGN.md §3.2): the best particle's trajectory
-// becomes graph nodes, consecutive nodes are tied by the motion the filter found, nodes are
+// becomes graph nodes, consecutive nodes are tied by the motion the filter found (loosened where
+// it snapped onto older map, LoopClosureOptions::snap_sigmas), nodes are
 // grouped into submaps (rigid local maps, Cartographer's idea), and every few nodes the scan is
 // searched for in the older submaps with the branch-and-bound matcher, in a window as wide as
 // the drift the motion since the submap (or the last closure) allows. A match above the score
@@ -27,6 +29,7 @@ struct LoopClosureStatistics {
   int accepted = 0;  // closures kept
   int rejected = 0;  // closures dropped as inconsistent with the other closures
   int gated = 0;     // closures not added: inconsistent with the motion since (gate_sigmas)
+  int loosened = 0;  // motion edges loosened where the filter snapped (snap_sigmas)
   int optimizations = 0;
   int follows = 0;  // online: times the particles and their map moved onto the optimized nodes
   double motion_noise_scale = 1.0;  // the motion edges' variance factor at the end
@@ -92,8 +95,12 @@ class LoopCloser {
   LoopCloser& operator=(LoopCloser&&) noexcept;
 
   // Adds the next node (its scan goes into the open submap, and its match points are kept for
-  // the searches); returns true when the graph was optimized.
-  bool AddNode(const PreparedScan& scan, const Pose2& filter_pose);
+  // the searches); returns true when the graph was optimized. 'local_pose' (optional) is a local
+  // estimate of the node's pose, in a frame of its own (the laser odometry's): where the filter's
+  // step from the previous node disagrees with its step, the motion edge is loosened
+  // (LoopClosureOptions::snap_sigmas).
+  bool AddNode(const PreparedScan& scan, const Pose2& filter_pose,
+               const std::optional<Pose2>& local_pose = std::nullopt);
   std::size_t size() const;
   // The graph's poses, one per node.
   const std::vector<Pose2>& estimate() const;
@@ -114,8 +121,14 @@ class LoopCloser {
 };
 
 // Runs the pose graph over the nodes in order, as it would run while they arrive: 'scans' and
-// 'poses' (the filter's, one per node) of the same length. 'progress' (may be empty) is called
-// with the nodes done.
+// 'poses' (the filter's, one per node) of the same length, and 'local_poses' the same length or
+// empty (LoopCloser::AddNode). 'progress' (may be empty) is called with the nodes done.
+LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
+                             const std::vector<Pose2>& poses, const std::vector<Pose2>& local_poses,
+                             const LoopClosureOptions& options,
+                             const std::function<void(std::size_t)>& progress = {});
+
+// The same without local estimates.
 LoopClosureResult CloseLoops(const std::vector<const PreparedScan*>& scans,
                              const std::vector<Pose2>& poses, const LoopClosureOptions& options,
                              const std::function<void(std::size_t)>& progress = {});

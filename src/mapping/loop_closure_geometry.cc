@@ -29,6 +29,15 @@ PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
   return edge;
 }
 
+bool LoosenSnap(const Pose2& local_step, const LoopClosureOptions& options, PoseGraphEdge* edge) {
+  if (options.snap_sigmas <= 0.0) return false;
+  const Eigen::Vector3d disagreement = PoseError(edge->relative, local_step).cwiseAbs();
+  if ((disagreement.array() <= options.snap_sigmas * edge->sigmas.array()).all()) return false;
+  const double xy = std::max(disagreement.x(), disagreement.y());
+  edge->sigmas = edge->sigmas.cwiseMax(Eigen::Vector3d(xy, xy, disagreement.z()));
+  return true;
+}
+
 RelativeUncertainty UncertaintyToSubmap(const ChainUncertainty& chain, int first, int anchor, int i,
                                         const LoopClosureOptions& options) {
   const int from = std::max(first, anchor);
@@ -96,11 +105,14 @@ double MotionNoiseScale(const std::vector<Innovation>& innovations, double min_s
   return std::exp(high);
 }
 
-std::vector<PoseGraphEdge> ScaledMotion(const std::vector<PoseGraphEdge>& edges, double scale) {
+std::vector<PoseGraphEdge> ScaledMotion(const std::vector<PoseGraphEdge>& edges, double scale,
+                                        const std::vector<bool>& loosened) {
   std::vector<PoseGraphEdge> scaled = edges;
   const double factor = std::sqrt(scale);
   for (PoseGraphEdge& edge : scaled) {
-    if (!edge.loop_closure) edge.sigmas *= factor;
+    const auto from = static_cast<std::size_t>(edge.from);
+    if (edge.loop_closure || (from < loosened.size() && loosened[from])) continue;
+    edge.sigmas *= factor;
   }
   return scaled;
 }

@@ -32,6 +32,12 @@ Eigen::Vector3d LoopVariances(const LoopClosureOptions& options);
 PoseGraphEdge MotionEdge(int from, const Pose2& a, const Pose2& b,
                          const LoopClosureOptions& options);
 
+// Loosens 'edge' (a motion edge: the filter's step) when 'local_step', a local estimate of the
+// same motion, lies more than snap_sigmas of the edge's standard deviations from it in x, y or
+// θ: its standard deviations become at least the disagreement (x and y the larger of the two).
+// Returns whether it did (LoopClosureOptions::snap_sigmas).
+bool LoosenSnap(const Pose2& local_step, const LoopClosureOptions& options, PoseGraphEdge* edge);
+
 // Uncertainty of node i relative to submap 'first', in the submap's frame: the motion edges'
 // part, since the later of the submap and the last accepted closure ('anchor'; the closure ties
 // the path before it to the map, up to the closure's own uncertainty), and that closure's part.
@@ -67,7 +73,10 @@ double SquaredPairDisagreement(const PoseGraphEdge& a, const PoseGraphEdge& b,
 double MotionNoiseScale(const std::vector<Innovation>& innovations, double min_scale,
                         double max_scale);
 
-// 'edges' with the motion edges' standard deviations multiplied by sqrt(scale).
-std::vector<PoseGraphEdge> ScaledMotion(const std::vector<PoseGraphEdge>& edges, double scale);
+// 'edges' with the motion edges' standard deviations multiplied by sqrt(scale), but for those
+// from the nodes 'loosened' marks (indexed by the edge's 'from'; may be shorter): their
+// standard deviations are a measured disagreement (LoosenSnap), not the model's noise.
+std::vector<PoseGraphEdge> ScaledMotion(const std::vector<PoseGraphEdge>& edges, double scale,
+                                        const std::vector<bool>& loosened = {});
 
 }  // namespace semchain::mapping::internal

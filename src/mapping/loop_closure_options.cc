@@ -27,6 +27,10 @@ bool LoopClosureOptions::Validate(std::string* error) const {
     *error = "window_sigmas must be positive";
     return false;
   }
+  if (!(snap_sigmas >= 0.0)) {
+    *error = "snap_sigmas must be >= 0 (0: the filter's steps at the model's noise)";
+    return false;
+  }
   if (!(gate_sigmas >= 0.0)) {
     *error = "gate_sigmas must be >= 0 (0: no gate)";
     return false;

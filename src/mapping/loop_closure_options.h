@@ -116,6 +116,17 @@ struct LoopClosureOptions {
   double odometry_sigma_radians_per_radian = 0.02;
   double loop_sigma_meters = 0.05;
   double loop_sigma_radians = 0.01;
+  // A motion edge is at least as uncertain as the filter's step and a local estimate of the same
+  // step (the laser odometry's scan matching against its recent scans) disagree, once they
+  // disagree by more than this many of the edge's standard deviations. Such a step is the filter
+  // snapping onto an older part of its own map: a loop it closed by itself. Held at the model's
+  // few centimetres and tenths of a degree, that step would tell the graph the loop is already
+  // closed, the loop's error would stay in the map as a kink, and closures further along the
+  // loop would fall outside their search windows or be gated. ACES on wheel odometry, seed 3:
+  // the filter's first loop 15° off, closed by three such steps of 20–24°, aligned ATE 3.9 m;
+  // 0.26 m with them loosened (docs/results.md, "The pose graph by default"). Where a local
+  // estimate is not given (LoopCloser::AddNode), or 0: the model's noise alone.
+  double snap_sigmas = 10.0;
   // In the optimization the motion edges' variances are multiplied by the smallest factor under
   // which every accepted closure's innovation (how far it landed from where the graph predicted
   // it) lies in its 99 % region, within these bounds: a filter better than the model above is

@@ -231,6 +231,7 @@ Status ReadPoseGraph(const yaml::Node& root, SlamOptions* options) {
                       {"odometry_sigma_radians_per_radian", &l.odometry_sigma_radians_per_radian},
                       {"loop_sigma_meters", &l.loop_sigma_meters},
                       {"loop_sigma_radians", &l.loop_sigma_radians},
+                      {"snap_sigmas", &l.snap_sigmas},
                       {"adapt_motion_noise", &l.adapt_motion_noise},
                       {"min_motion_noise_scale", &l.min_motion_noise_scale},
                       {"max_motion_noise_scale", &l.max_motion_noise_scale},

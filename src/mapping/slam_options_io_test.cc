@@ -72,6 +72,7 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_EQ(l.match_beam_step, d.match_beam_step);
   EXPECT_DOUBLE_EQ(l.loop_sigma_meters, d.loop_sigma_meters);
   EXPECT_DOUBLE_EQ(l.loop_sigma_radians, d.loop_sigma_radians);
+  EXPECT_DOUBLE_EQ(l.snap_sigmas, d.snap_sigmas);
   EXPECT_EQ(l.adapt_motion_noise, d.adapt_motion_noise);
   EXPECT_DOUBLE_EQ(l.min_motion_noise_scale, d.min_motion_noise_scale);
   EXPECT_DOUBLE_EQ(l.max_motion_noise_scale, d.max_motion_noise_scale);
