@@ -118,12 +118,10 @@ SlamStep IncrementalSlam::AddScan(const StampedScan& raw) {
   auto start = std::chrono::steady_clock::now();
   prepared_.push_back(PrepareScan(raw.scan, raw.LaserOffset(), options_.rbpf.scan));
   StampedScan scan = raw;
-  const bool snap_check = options_.pose_graph && options_.loop_closure.snap_sigmas > 0.0;
   if (options_.laser_odometry.enabled) {
     scan.odometry = laser_odometry_.Add(raw, prepared_.back());
     scan.laser_pose = scan.odometry * raw.LaserOffset();
-    if (snap_check) local_poses_.push_back(scan.odometry);
-  } else if (snap_check) {
+  } else if (SnapCheck()) {
     local_poses_.push_back(laser_odometry_.Add(raw, prepared_.back()));
   }
   scans_.push_back(scan);
@@ -166,8 +164,7 @@ std::vector<IncrementalSlam::GraphInput> IncrementalSlam::NewGraphNodes(std::siz
     input.scan = prepared_[static_cast<std::size_t>(input.scan_index)];
     input.first = fed == 0 && j == 0;
     input.pose = input.first ? lineage[j]->pose : lineage[j - 1]->pose.Between(lineage[j]->pose);
-    if (!local_poses_.empty())
-      input.local = local_poses_[static_cast<std::size_t>(input.scan_index)];
+    input.local = LocalPose(input.scan_index);
     inputs.push_back(std::move(input));
   }
   return inputs;
@@ -203,6 +200,16 @@ std::vector<IncrementalSlam::GraphInput> IncrementalSlam::TakeGraphNodes(std::si
   std::vector<GraphInput> inputs = NewGraphNodes(lag);
   for (const GraphInput& input : inputs) node_scans_.push_back(input.scan_index);
   return inputs;
+}
+
+bool IncrementalSlam::SnapCheck() const {
+  return options_.pose_graph && options_.loop_closure.snap_sigmas > 0.0;
+}
+
+std::optional<Pose2> IncrementalSlam::LocalPose(int scan_index) const {
+  if (!SnapCheck()) return std::nullopt;
+  const auto i = static_cast<std::size_t>(scan_index);
+  return options_.laser_odometry.enabled ? scans_[i].odometry : local_poses_[i];
 }
 
 void IncrementalSlam::FollowIfPending() {
@@ -342,8 +349,7 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     for (const auto& [index, pose] : nodes) {
       node_scans.push_back(&prepared_[static_cast<std::size_t>(index)]);
       node_poses.push_back(pose);
-      if (!local_poses_.empty())
-        local_poses.push_back(local_poses_[static_cast<std::size_t>(index)]);
+      if (const std::optional<Pose2> local = LocalPose(index)) local_poses.push_back(*local);
     }
     std::vector<int> node_indices;
     for (const auto& node : nodes) node_indices.push_back(node.first);

@@ -104,6 +104,11 @@ class IncrementalSlam {
   void WaitForGraph() const;
   void FollowPoseGraph();
   void FollowIfPending();  // FollowPoseGraph when the graph asked for it
+  // Whether the pose graph checks the filter's steps against the laser odometry's.
+  bool SnapCheck() const;
+  // With SnapCheck(), the laser-odometry pose of scan 'scan_index' (the filter's own odometry
+  // when it runs on the laser odometry); otherwise none.
+  std::optional<Pose2> LocalPose(int scan_index) const;
   // The processed scans' indices and poses the final trajectory is interpolated between.
   std::vector<std::pair<int, Pose2>> Nodes(std::vector<int>* processed) const;
 
@@ -112,8 +117,8 @@ class IncrementalSlam {
   RbpfSlam slam_;
   std::vector<PreparedScan> prepared_;
   std::vector<StampedScan> scans_;
-  // With the pose graph's snap check (LoopClosureOptions::snap_sigmas), each scan's laser-odometry
-  // pose: the filter's own odometry, or computed beside it when the filter runs on wheel odometry.
+  // With the pose graph's snap check (LoopClosureOptions::snap_sigmas) and a filter on wheel
+  // odometry, each scan's laser-odometry pose, computed beside the filter (LocalPose).
   std::vector<Pose2> local_poses_;
   // With the online pose graph: the graph and the scan index of each of its nodes.
   mutable std::optional<LoopCloser> loop_closer_;
