@@ -109,7 +109,9 @@ Result<MapAndReference> BuildMap(const BenchTrackArgs& args,
     out.info = {{"from", "SLAM on the same scans" +
                              (args.config.empty() ? std::string() : " (" + args.config + ")")},
                 {"processed", slam.statistics.processed},
-                {"localized", slam.localized},
+                {"localized", slam.every_scan.matched},
+                {"localized_searched", slam.every_scan.searched},
+                {"localized_replaced", slam.every_scan.replaced},
                 {"slam_seconds", seconds}};
   }
   if (trajectory.size() != scans.size()) {

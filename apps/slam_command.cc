@@ -75,7 +75,9 @@ std::string StatisticsJson(const mapping::SlamResult& result, const mapping::Sla
   const mapping::RbpfStatistics& s = result.statistics;
   nlohmann::json json = {{"scans", s.scans},
                          {"processed", s.processed},
-                         {"localized", result.localized},
+                         {"localized", result.every_scan.matched},
+                         {"localized_searched", result.every_scan.searched},
+                         {"localized_replaced", result.every_scan.replaced},
                          {"particles", options.rbpf.particles},
                          {"seed", options.rbpf.seed},
                          {"annealing", options.rbpf.annealing.enabled},
@@ -234,8 +236,11 @@ Result<mapping::DepthFusionResult> FuseDepth(const mapping::DepthRun& depth_run,
 
 void LogStatistics(const SlamInputs& inputs, const SlamRun& run) {
   const mapping::SlamResult& result = run.result;
-  spdlog::info("slam: processed {} scans, localized {} of {} in the final map, {:.1f} s",
-               result.statistics.processed, result.localized, inputs.scans.size(), run.seconds);
+  spdlog::info(
+      "slam: processed {} scans, localized {} of {} in the final map ({} searched, {} moved by "
+      "the search), {:.1f} s",
+      result.statistics.processed, result.every_scan.matched, inputs.scans.size(),
+      result.every_scan.searched, result.every_scan.replaced, run.seconds);
   if (!inputs.options.pose_graph) return;
   const mapping::LoopClosureStatistics& l = result.loop_closure;
   spdlog::info(

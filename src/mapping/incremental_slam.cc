@@ -1,7 +1,6 @@
 #include "mapping/incremental_slam.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <future>
 #include <utility>
@@ -60,21 +59,14 @@ OccupancyGrid BuildNodeMap(const std::vector<PreparedScan>& scans,
 }
 
 // Localizes every scan in 'map' from 'poses' (updated in place); returns how many matched.
-int LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans,
-                const SlamOptions& options, std::vector<Pose2>* poses,
-                const std::function<void(std::size_t)>& tick) {
+EveryScanStatistics LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans,
+                                const SlamOptions& options, std::vector<Pose2>* poses,
+                                const std::function<void(std::size_t)>& tick) {
   const LikelihoodField field(map, options.rbpf.field);
-  std::atomic<int> matched{0};
-  std::atomic<std::size_t> done{0};
-  ParallelFor(static_cast<int>(scans.size()), ResolveThreadCount(options.rbpf.threads), [&](int i) {
-    const LocalizationResult result =
-        LocalizeScan(field, scans[i], (*poses)[i], options.every_scan);
-    (*poses)[i] = result.pose;
-    if (result.matched) ++matched;
-    ++done;
-  });
-  if (tick) tick(done.load());
-  return matched.load();
+  const EveryScanStatistics statistics = LocalizeScans(field, scans, poses, options.every_scan,
+                                                       ResolveThreadCount(options.rbpf.threads));
+  if (tick) tick(scans.size());
+  return statistics;
 }
 
 // 'candidate' with the scan indices of its nodes ('node_scans', one per graph node).
@@ -371,10 +363,10 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     auto tick = [&](std::size_t) {
       if (progress) progress(scans_.size() + scans_.size());
     };
-    result.localized = LocalizeAll(result.map, prepared_, options_, &poses, tick);
+    result.every_scan = LocalizeAll(result.map, prepared_, options_, &poses, tick);
     for (int pass = 0; pass < options_.every_scan.refinement_passes; ++pass) {
       result.map = BuildMap(prepared_, poses, options_.rbpf.grid);
-      result.localized = LocalizeAll(result.map, prepared_, options_, &poses, tick);
+      result.every_scan = LocalizeAll(result.map, prepared_, options_, &poses, tick);
     }
   }
   // Released first: once the filter is gone this map is the last holder of its cells.

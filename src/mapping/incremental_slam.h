@@ -35,7 +35,7 @@ struct SlamResult {
   OccupancyGrid map;                    // built from the final poses
   std::vector<StampedPose> trajectory;  // one pose per scan, in log order
   std::vector<int> processed;           // indices of the scans the RBPF processed
-  int localized = 0;                    // scans refined by scan matching in the final map
+  EveryScanStatistics every_scan;       // scans localized (and searched) in the final map
   int laser_odometry_rejected = 0;      // scans that kept their wheel odometry increment
   RbpfStatistics statistics;
   LoopClosureStatistics loop_closure;  // with SlamOptions::pose_graph

@@ -114,7 +114,7 @@ TEST(SlamPipelineTest, EveryScanGetsAnAccuratePose) {
     EXPECT_LT(MaxPositionError(poses, run.truth), 0.1) << laser_odometry;
     EXPECT_LT(MaxRelativeError(poses, run.truth, 5), 0.02) << laser_odometry;
     EXPECT_LT(result.processed.size(), run.scans.size());
-    EXPECT_GT(result.localized, static_cast<int>(run.scans.size()) - 5);
+    EXPECT_GT(result.every_scan.matched, static_cast<int>(run.scans.size()) - 5);
   }
 }
 
@@ -163,7 +163,7 @@ TEST(SlamPipelineTest, FinishingForGoodGivesWhatFinishingAndKeepingGives) {
       EXPECT_EQ(last.trajectory[i].pose.theta, kept.trajectory[i].pose.theta) << pose_graph;
     }
     EXPECT_EQ(GridToMapImage(last.map).cells, GridToMapImage(kept.map).cells) << pose_graph;
-    EXPECT_EQ(last.localized, kept.localized);
+    EXPECT_EQ(last.every_scan.matched, kept.every_scan.matched);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/check.h"
+#include "mapping/parallel_for.h"
 #include "mapping/required_matches.h"
 
 namespace semchain::mapping {
@@ -15,6 +16,14 @@ bool EveryScanOptions::Validate(std::string* error) const {
   if (refinement_passes < 0 || min_matched_points < 0 || !(match_max_range_meters > 0.0) ||
       match_beam_step < 1) {
     *error = "refinement_passes and min_matched_points must be >= 0, match_max_range_meters > 0";
+    return false;
+  }
+  if (!(search_below_ratio >= 0.0) || typical_window_scans < 1 || !(search_margin_ratio >= 1.0)) {
+    *error = "search_below_ratio must be >= 0, typical_window_scans >= 1, search_margin_ratio >= 1";
+    return false;
+  }
+  if (!search.Validate(error)) {
+    *error = "search: " + *error;
     return false;
   }
   return matcher.Validate(error) && refinement.Validate(error);
@@ -47,20 +56,109 @@ std::vector<Pose2> InterpolateTrajectory(const std::vector<Pose2>& odometry,
   return poses;
 }
 
+namespace {
+
+double MeanScore(const LikelihoodField& field, const MatchPoints& points, const Pose2& pose) {
+  if (points.size() == 0) return 0.0;
+  return field.Evaluate(points, pose).score / static_cast<double>(points.size());
+}
+
+// The pose 'match' (found on every match_beam_step-th return) reached, refined on all returns
+// when the refinement is on; not matched when too few returns lie on obstacles there.
+LocalizationResult Finish(const LikelihoodField& field, const PreparedScan& scan,
+                          const MatchResult& match, const Pose2& prior,
+                          const EveryScanOptions& options) {
+  const MatchPoints sparse =
+      SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step);
+  const int available = sparse.measured * options.match_beam_step;
+  const FieldEvaluation at_match = field.Evaluate(sparse, match.pose);
+  if (at_match.matched * options.match_beam_step <
+      RequiredMatches(options.min_matched_points, available)) {
+    return {prior, false, 0.0};
+  }
+  const MatchPoints points = SelectMatchPoints(scan, options.match_max_range_meters);
+  PosePrior held{prior, Eigen::Vector3d(options.prior_sigma_meters, options.prior_sigma_meters,
+                                        options.prior_sigma_radians)};
+  const bool with_prior = options.prior_sigma_meters > 0.0 && options.prior_sigma_radians > 0.0;
+  const Pose2 pose = options.refinement.enabled
+                         ? RefineOnSurface(field, points, match.pose, options.refinement,
+                                           with_prior ? &held : nullptr)
+                               .pose
+                         : match.pose;
+  return {pose, true, MeanScore(field, points, pose)};
+}
+
+// The median score of the matched scans within 'window' of scan i (i itself left out); 0 when
+// none is matched.
+double TypicalScore(const std::vector<LocalizationResult>& results, int i, int window) {
+  std::vector<double> scores;
+  const int count = static_cast<int>(results.size());
+  for (int j = std::max(0, i - window); j <= std::min(count - 1, i + window); ++j) {
+    if (j != i && results[static_cast<std::size_t>(j)].matched) {
+      scores.push_back(results[static_cast<std::size_t>(j)].score);
+    }
+  }
+  if (scores.empty()) return 0.0;
+  const auto middle = scores.begin() + static_cast<std::ptrdiff_t>(scores.size() / 2);
+  std::nth_element(scores.begin(), middle, scores.end());
+  return *middle;
+}
+
+}  // namespace
+
 LocalizationResult LocalizeScan(const LikelihoodField& field, const PreparedScan& scan,
                                 const Pose2& prior, const EveryScanOptions& options) {
   // Hill climbing on every n-th return, the refinement on all of them.
   const MatchPoints sparse =
       SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step);
-  const MatchResult match = HillClimb(field, sparse, prior, options.matcher);
-  const int available = sparse.measured * options.match_beam_step;
-  if (match.evaluation.matched * options.match_beam_step <
-      RequiredMatches(options.min_matched_points, available)) {
-    return {prior, false};
+  return Finish(field, scan, HillClimb(field, sparse, prior, options.matcher), prior, options);
+}
+
+EveryScanStatistics LocalizeScans(const LikelihoodField& field,
+                                  const std::vector<PreparedScan>& scans, std::vector<Pose2>* poses,
+                                  const EveryScanOptions& options, int threads) {
+  SEMCHAIN_CHECK(poses->size() == scans.size());
+  const std::vector<Pose2> priors = *poses;
+  std::vector<LocalizationResult> results(scans.size());
+  const int count = static_cast<int>(scans.size());
+  ParallelFor(count, threads, [&](int i) {
+    const auto k = static_cast<std::size_t>(i);
+    results[k] = LocalizeScan(field, scans[k], priors[k], options);
+  });
+  // Scores are compared with the neighbours' before any is replaced, so the order of the
+  // threads does not matter.
+  std::vector<int> flagged;
+  if (options.search_below_ratio > 0.0) {
+    for (int i = 0; i < count; ++i) {
+      // A scan left unmatched (too few returns on obstacles where hill climbing ended) scores 0.
+      const LocalizationResult& result = results[static_cast<std::size_t>(i)];
+      const double typical = TypicalScore(results, i, options.typical_window_scans);
+      if (typical > 0.0 && result.score < options.search_below_ratio * typical) {
+        flagged.push_back(i);
+      }
+    }
   }
-  if (!options.refinement.enabled) return {match.pose, true};
-  const MatchPoints points = SelectMatchPoints(scan, options.match_max_range_meters);
-  return {RefineOnSurface(field, points, match.pose, options.refinement).pose, true};
+  std::vector<LocalizationResult> searched(flagged.size());
+  ParallelFor(static_cast<int>(flagged.size()), threads, [&](int f) {
+    const auto k = static_cast<std::size_t>(flagged[static_cast<std::size_t>(f)]);
+    const MatchResult found = CorrelativeSearch(field, scans[k], priors[k], options.search,
+                                                options.match_max_range_meters);
+    searched[static_cast<std::size_t>(f)] = Finish(field, scans[k], found, priors[k], options);
+  });
+  EveryScanStatistics statistics;
+  statistics.searched = static_cast<int>(flagged.size());
+  for (std::size_t f = 0; f < flagged.size(); ++f) {
+    LocalizationResult& result = results[static_cast<std::size_t>(flagged[f])];
+    if (searched[f].matched && searched[f].score > options.search_margin_ratio * result.score) {
+      result = searched[f];
+      ++statistics.replaced;
+    }
+  }
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    (*poses)[k] = results[k].pose;
+    if (results[k].matched) ++statistics.matched;
+  }
+  return statistics;
 }
 
 }  // namespace semchain::mapping

@@ -149,15 +149,32 @@ Status ReadEveryScan(const yaml::Node& root, EveryScanOptions* e) {
   if (!node.ok()) return node.status();
   if (node->IsNull()) return Status::Ok();
   if (!node->IsMap()) return node->Error("expected a map");
-  SEMCHAIN_RETURN_IF_ERROR(
-      node->CheckKeys({"method", "refinement_passes", "min_matched_points",
-                       "match_max_range_meters", "match_beam_step", "matcher", "refinement"}));
+  SEMCHAIN_RETURN_IF_ERROR(node->CheckKeys(
+      {"method", "refinement_passes", "min_matched_points", "match_max_range_meters",
+       "match_beam_step", "matcher", "refinement", "search_below_ratio", "typical_window_scans",
+       "search_margin_ratio", "search", "prior_sigma_meters", "prior_sigma_radians"}));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "method", &e->method));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "refinement_passes", &e->refinement_passes));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "min_matched_points", &e->min_matched_points));
   SEMCHAIN_RETURN_IF_ERROR(
       yaml::ReadOptional(*node, "match_max_range_meters", &e->match_max_range_meters));
   SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "match_beam_step", &e->match_beam_step));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "search_below_ratio", &e->search_below_ratio));
+  SEMCHAIN_RETURN_IF_ERROR(yaml::ReadOptional(*node, "prior_sigma_meters", &e->prior_sigma_meters));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "prior_sigma_radians", &e->prior_sigma_radians));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "typical_window_scans", &e->typical_window_scans));
+  SEMCHAIN_RETURN_IF_ERROR(
+      yaml::ReadOptional(*node, "search_margin_ratio", &e->search_margin_ratio));
+  CorrelativeSearchOptions& w = e->search;
+  SEMCHAIN_RETURN_IF_ERROR(ReadSection(*node, "search",
+                                       {{"linear_window_meters", &w.linear_window_meters},
+                                        {"angular_window_radians", &w.angular_window_radians},
+                                        {"linear_step_meters", &w.linear_step_meters},
+                                        {"angular_step_radians", &w.angular_step_radians},
+                                        {"beam_step", &w.beam_step}},
+                                       {{"refinement", MatcherFields(&w.refinement)}}));
   SEMCHAIN_RETURN_IF_ERROR(ReadSection(*node, "refinement", RefinementFields(&e->refinement)));
   return ReadSection(*node, "matcher", MatcherFields(&e->matcher));
 }

@@ -13,6 +13,8 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   SlamOptions loaded;
   loaded.rbpf.particles = 7;  // the file must set it back
   loaded.every_scan.refinement.iterations = 1;
+  loaded.every_scan.search_below_ratio = 0.0;
+  loaded.every_scan.search.angular_window_radians = 0.0;
   const Status status = LoadSlamOptions(kConfigDir / "slam.yaml", &loaded);
   ASSERT_TRUE(status.ok()) << status.message();
   const SlamOptions defaults;
@@ -35,6 +37,13 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(loaded.laser_odometry.prior.min_rotation_sigma_radians,
                    defaults.laser_odometry.prior.min_rotation_sigma_radians);
   EXPECT_EQ(loaded.every_scan.refinement.lines_only, defaults.every_scan.refinement.lines_only);
+  EXPECT_DOUBLE_EQ(loaded.every_scan.search_below_ratio, defaults.every_scan.search_below_ratio);
+  EXPECT_EQ(loaded.every_scan.typical_window_scans, defaults.every_scan.typical_window_scans);
+  EXPECT_DOUBLE_EQ(loaded.every_scan.search_margin_ratio, defaults.every_scan.search_margin_ratio);
+  EXPECT_DOUBLE_EQ(loaded.every_scan.search.angular_window_radians,
+                   defaults.every_scan.search.angular_window_radians);
+  EXPECT_DOUBLE_EQ(loaded.every_scan.search.linear_window_meters,
+                   defaults.every_scan.search.linear_window_meters);
   EXPECT_EQ(loaded.rbpf.motion.per_reading_noise, defaults.rbpf.motion.per_reading_noise);
   EXPECT_EQ(loaded.pose_graph, defaults.pose_graph);
   const LoopClosureOptions& l = loaded.loop_closure;
