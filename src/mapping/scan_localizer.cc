@@ -128,13 +128,16 @@ EveryScanStatistics LocalizeScans(const LikelihoodField& field,
   // Scores are compared with the neighbours' before any is replaced, so the order of the
   // threads does not matter.
   std::vector<int> flagged;
+  std::vector<double> bars;  // search_below_ratio of each flagged scan's typical score
   if (options.search_below_ratio > 0.0) {
     for (int i = 0; i < count; ++i) {
       // A scan left unmatched (too few returns on obstacles where hill climbing ended) scores 0.
       const LocalizationResult& result = results[static_cast<std::size_t>(i)];
-      const double typical = TypicalScore(results, i, options.typical_window_scans);
-      if (typical > 0.0 && result.score < options.search_below_ratio * typical) {
+      const double bar =
+          options.search_below_ratio * TypicalScore(results, i, options.typical_window_scans);
+      if (bar > 0.0 && result.score < bar) {
         flagged.push_back(i);
+        bars.push_back(bar);
       }
     }
   }
@@ -148,8 +151,12 @@ EveryScanStatistics LocalizeScans(const LikelihoodField& field,
   EveryScanStatistics statistics;
   statistics.searched = static_cast<int>(flagged.size());
   for (std::size_t f = 0; f < flagged.size(); ++f) {
+    // The searched pose must also fit as its neighbours do: a scan of a place the map holds
+    // little of (a Neato's 30 returns on a wall only it saw) scores low at its right pose, and
+    // the best of a window there is a wrong pose scoring a little more.
     LocalizationResult& result = results[static_cast<std::size_t>(flagged[f])];
-    if (searched[f].matched && searched[f].score > options.search_margin_ratio * result.score) {
+    if (searched[f].matched && searched[f].score > options.search_margin_ratio * result.score &&
+        searched[f].score >= bars[f]) {
       result = searched[f];
       ++statistics.replaced;
     }

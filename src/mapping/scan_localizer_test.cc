@@ -95,6 +95,48 @@ TEST(LocalizeScansTest, AMatchedScanIsReplacedOnlyByASearchThatWinsByTheMargin) 
   }
 }
 
+// A corridor whose one feature, a door recess, the map holds 0.1 m further along than the scan
+// sees it (the map drew it on a pass whose along-track position was off). Hill climbing slides
+// the scan along the corridor onto the map's recess; with the prior, the interpolated pose keeps
+// the along-track position, and the walls still correct the pose across the corridor.
+TEST(LocalizeScansTest, ThePriorHoldsTheInterpolatedPoseAlongACorridor) {
+  auto corridor = [](double recess_x) {
+    return std::vector<testing::Segment>{{{-20.0, -1.0}, {20.0, -1.0}},
+                                         {{-20.0, 1.0}, {recess_x, 1.0}},
+                                         {{recess_x, 1.0}, {recess_x, 1.3}},
+                                         {{recess_x, 1.3}, {recess_x + 0.9, 1.3}},
+                                         {{recess_x + 0.9, 1.3}, {recess_x + 0.9, 1.0}},
+                                         {{recess_x + 0.9, 1.0}, {20.0, 1.0}}};
+  };
+  const double kRange = 8.0;  // the corridor's ends are out of range
+  OccupancyGrid map;
+  for (int i = -4; i <= 4; ++i) {
+    const Pose2 pose(0.5 * i, 0.0, 0.0);
+    InsertScan(
+        PrepareScan(testing::SimulateScan(corridor(3.0), pose, 361, kPi, kRange), Pose2(), {}),
+        pose, &map);
+  }
+  const LikelihoodField field(map, {});
+  const Pose2 truth(0.0, 0.0, 0.0);
+  const std::vector<PreparedScan> scans = {
+      PrepareScan(testing::SimulateScan(corridor(3.1), truth, 361, kPi, kRange), Pose2(), {})};
+  const Pose2 prior(0.0, 0.04, 0.01);  // right along the corridor, off across it
+
+  EveryScanOptions options;  // the default prior: 0.05 m, 0.05 rad
+  std::vector<Pose2> held = {prior};
+  LocalizeScans(field, scans, &held, options, 1);
+  options.prior_sigma_meters = 0.0;
+  std::vector<Pose2> free = {prior};
+  LocalizeScans(field, scans, &free, options, 1);
+
+  EXPECT_LT(free[0].x, -0.02);  // towards the map's recess (measured: 0.03 m)
+  EXPECT_LT(std::abs(held[0].x - prior.x), 0.005);
+  for (const Pose2& pose : {free[0], held[0]}) {
+    EXPECT_NEAR(pose.y, truth.y, 0.01);
+    EXPECT_NEAR(AngleDifference(pose.theta, truth.theta), 0.0, DegToRad(0.3));
+  }
+}
+
 TEST(LocalizeScansTest, BadSearchOptionsAreRejected) {
   std::string error;
   EveryScanOptions options;

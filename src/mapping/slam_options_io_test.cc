@@ -15,6 +15,7 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
   loaded.every_scan.refinement.iterations = 1;
   loaded.every_scan.search_below_ratio = 0.0;
   loaded.every_scan.search.angular_window_radians = 0.0;
+  loaded.every_scan.prior_sigma_meters = 0.0;
   const Status status = LoadSlamOptions(kConfigDir / "slam.yaml", &loaded);
   ASSERT_TRUE(status.ok()) << status.message();
   const SlamOptions defaults;
@@ -44,6 +45,8 @@ TEST(SlamOptionsIoTest, ShippedDefaultsFileMatchesTheBuiltInDefaults) {
                    defaults.every_scan.search.angular_window_radians);
   EXPECT_DOUBLE_EQ(loaded.every_scan.search.linear_window_meters,
                    defaults.every_scan.search.linear_window_meters);
+  EXPECT_DOUBLE_EQ(loaded.every_scan.prior_sigma_meters, defaults.every_scan.prior_sigma_meters);
+  EXPECT_DOUBLE_EQ(loaded.every_scan.prior_sigma_radians, defaults.every_scan.prior_sigma_radians);
   EXPECT_EQ(loaded.rbpf.motion.per_reading_noise, defaults.rbpf.motion.per_reading_noise);
   EXPECT_EQ(loaded.pose_graph, defaults.pose_graph);
   const LoopClosureOptions& l = loaded.loop_closure;
