@@ -19,7 +19,7 @@
 // odometry between two processed scans slipped (ACES scan 3720 at t = 789 s: 11° in a turn in
 // place), the scan stays in a local optimum scoring a third of its neighbours', the trajectory
 // holds a pose the map disagrees with, and the map is drawn with that scan turned. Such scans
-// are searched over a window and take the best fit the search finds.
+// have their heading swept and take the sweep's fit when it is clearly better.
 namespace semchain::mapping {
 
 struct EveryScanOptions {
@@ -46,9 +46,9 @@ struct EveryScanOptions {
   // A scan whose localized pose scores (the field's mean score per return) below this fraction
   // of the typical score of its neighbours — the median over the matched scans among the
   // 'typical_window_scans' either side — is searched over 'search' around its interpolated pose,
-  // and so is one left unmatched beside matched neighbours; 0 searches none. 0.9 also searched
-  // runs of corridor scans whose interpolated times are muddled (Intel's restamped bursts) and
-  // moved them 0.2–0.5 m along the corridor (docs/experiments.md).
+  // and so is one left unmatched beside matched neighbours; 0 searches none. 0.9, with a ±0.3 m
+  // window, also searched runs of corridor scans whose interpolated times are muddled (Intel's
+  // restamped bursts) and moved them 0.2–0.5 m along the corridor (docs/experiments.md).
   double search_below_ratio = 0.7;
   int typical_window_scans = 25;
   // Odometry slips in heading between two processed scans (a turn in place); in translation it is
