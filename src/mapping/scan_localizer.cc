@@ -63,16 +63,14 @@ double MeanScore(const LikelihoodField& field, const MatchPoints& points, const 
   return field.Evaluate(points, pose).score / static_cast<double>(points.size());
 }
 
-// The pose 'match' (found on every match_beam_step-th return) reached, refined on all returns
-// when the refinement is on; not matched when too few returns lie on obstacles there.
+// The pose 'match_pose' (found on 'sparse', every match_beam_step-th return, of which
+// 'sparse_matched' lie on obstacles there) refined on all returns when the refinement is on;
+// not matched when too few returns lie on obstacles.
 LocalizationResult Finish(const LikelihoodField& field, const PreparedScan& scan,
-                          const MatchResult& match, const Pose2& prior,
-                          const EveryScanOptions& options) {
-  const MatchPoints sparse =
-      SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step);
+                          const MatchPoints& sparse, const Pose2& match_pose, int sparse_matched,
+                          const Pose2& prior, const EveryScanOptions& options) {
   const int available = sparse.measured * options.match_beam_step;
-  const FieldEvaluation at_match = field.Evaluate(sparse, match.pose);
-  if (at_match.matched * options.match_beam_step <
+  if (sparse_matched * options.match_beam_step <
       RequiredMatches(options.min_matched_points, available)) {
     return {prior, false, 0.0};
   }
@@ -81,10 +79,10 @@ LocalizationResult Finish(const LikelihoodField& field, const PreparedScan& scan
                                         options.prior_sigma_radians)};
   const bool with_prior = options.prior_sigma_meters > 0.0 && options.prior_sigma_radians > 0.0;
   const Pose2 pose = options.refinement.enabled
-                         ? RefineOnSurface(field, points, match.pose, options.refinement,
+                         ? RefineOnSurface(field, points, match_pose, options.refinement,
                                            with_prior ? &held : nullptr)
                                .pose
-                         : match.pose;
+                         : match_pose;
   return {pose, true, MeanScore(field, points, pose)};
 }
 
@@ -111,7 +109,8 @@ LocalizationResult LocalizeScan(const LikelihoodField& field, const PreparedScan
   // Hill climbing on every n-th return, the refinement on all of them.
   const MatchPoints sparse =
       SelectMatchPoints(scan, options.match_max_range_meters, options.match_beam_step);
-  return Finish(field, scan, HillClimb(field, sparse, prior, options.matcher), prior, options);
+  const MatchResult match = HillClimb(field, sparse, prior, options.matcher);
+  return Finish(field, scan, sparse, match.pose, match.evaluation.matched, prior, options);
 }
 
 EveryScanStatistics LocalizeScans(const LikelihoodField& field,
@@ -146,7 +145,12 @@ EveryScanStatistics LocalizeScans(const LikelihoodField& field,
     const auto k = static_cast<std::size_t>(flagged[static_cast<std::size_t>(f)]);
     const MatchResult found = CorrelativeSearch(field, scans[k], priors[k], options.search,
                                                 options.match_max_range_meters);
-    searched[static_cast<std::size_t>(f)] = Finish(field, scans[k], found, priors[k], options);
+    // The search's evaluation is on all returns; the matched test counts the sparse ones.
+    const MatchPoints sparse =
+        SelectMatchPoints(scans[k], options.match_max_range_meters, options.match_beam_step);
+    searched[static_cast<std::size_t>(f)] =
+        Finish(field, scans[k], sparse, found.pose, field.Evaluate(sparse, found.pose).matched,
+               priors[k], options);
   });
   EveryScanStatistics statistics;
   statistics.searched = static_cast<int>(flagged.size());
