@@ -45,6 +45,7 @@ struct BenchTrackArgs {
   bool no_scan_tracking = false;
   std::optional<double> min_score, confident_score, translation_weight, rotation_weight;
   std::optional<double> search_margin;
+  std::optional<double> search_min_ratio;
   int seed = 1;
 };
 
@@ -186,6 +187,7 @@ Status SetScanTracking(const BenchTrackArgs& args, eval::TrackOptions* track_opt
   if (args.translation_weight) scan_tracking.translation_weight = *args.translation_weight;
   if (args.rotation_weight) scan_tracking.rotation_weight = *args.rotation_weight;
   if (args.search_margin) scan_tracking.search_margin_ratio = *args.search_margin;
+  if (args.search_min_ratio) scan_tracking.search_min_ratio = *args.search_min_ratio;
   std::string error;
   if (!scan_tracking.Validate(&error)) return Status::Error("bench track: " + error);
   return Status::Ok();
@@ -326,6 +328,10 @@ void AddBenchTrack(CLI::App& bench, int& exit_code) {
   command->add_option("--match-search-margin", args->search_margin,
                       "Scan tracking: a searched pose replaces the refinement of the prediction "
                       "only when it scores this many times as much (default 1)");
+  command->add_option("--match-search-min-ratio", args->search_min_ratio,
+                      "Scan tracking: where the prediction's refinement fits, a searched pose "
+                      "must score this fraction of the recent matches' typical score (default "
+                      "0.8)");
   command->add_option("--seed", args->seed, "Seed of the filters")->capture_default_str();
   command->callback([args, &exit_code] {
     if (args->log.empty() == args->bag.empty()) {

@@ -47,6 +47,11 @@ bool ScanTrackingOptions::Validate(std::string* error) const {
     *error = "scan_tracking.search_margin_ratio must be >= 1";
     return false;
   }
+  if (!(search_min_ratio >= 0.0 && search_min_ratio <= 1.0 && search_min_score >= 0.0 &&
+        search_min_score <= 1.0)) {
+    *error = "scan_tracking: need 0 <= search_min_ratio <= 1 and 0 <= search_min_score <= 1";
+    return false;
+  }
   if (!(max_correction_meters > 0.0 && max_correction_radians > 0.0 &&
         search_linear_window_meters >= 0.0 && search_angular_window_radians >= 0.0)) {
     *error = "scan_tracking: corrections must be > 0 and search windows >= 0";
@@ -126,6 +131,8 @@ ScanTrackingOptions ScanTrackingThresholds(const ScanTrackingOptions& options, d
       std::clamp(options.confident_ratio * typical, options.min_score, options.confident_score);
   adjusted.min_score =
       std::clamp(options.min_ratio * typical, options.min_score, adjusted.confident_score);
+  adjusted.search_min_score =
+      std::max({options.search_min_ratio * typical, options.search_min_score, adjusted.min_score});
   return adjusted;
 }
 
@@ -159,6 +166,9 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
   }
   result.searched = true;
   const double refined_score = result.score;
+  // The bar keeps a garbled scan from pulling a prediction that fits off it; when none fits
+  // (the odometry slipped beyond the refinement's reach), the search is the only estimate.
+  const double search_min_score = result.matched ? options.search_min_score : options.min_score;
   for (const Pose2& prediction : predictions) {
     mapping::SearchWindow window;
     window.center = prediction;
@@ -168,7 +178,9 @@ ScanTrackingResult TrackScan(const ScanMatchRelocalizer& matcher,
         matcher.RelocalizeInWindow(points, window, options.min_score);
     if (!found.success) continue;
     const double score = score_of(found.pose);
-    if (score >= options.search_margin_ratio * refined_score) consider(found.pose, score);
+    if (score >= options.search_margin_ratio * refined_score && score >= search_min_score) {
+      consider(found.pose, score);
+    }
   }
   return result;
 }

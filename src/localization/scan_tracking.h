@@ -26,8 +26,9 @@
 // by more than max_correction slid to another wall and is dropped. The best scoring refinement
 // is taken when it scores confident_score. Otherwise (odometry that slipped or was late) a
 // branch-and-bound search of a window around each prediction is refined too, and the best
-// scoring of all is taken when it scores min_score; when none does, the scan is not matched and
-// the caller keeps its own estimate.
+// scoring of all is taken when it scores min_score (a searched pose, when a refinement fits,
+// search_min_score); when none does, the scan is not matched and the caller keeps its own
+// estimate.
 namespace semchain::localization {
 
 struct ScanTrackingOptions {
@@ -68,6 +69,17 @@ struct ScanTrackingOptions {
   // more (1: whichever scores more). 1.15 kept one cluttered FR079 scan from matching 9.8° off
   // (0.49 against 0.44), but left nine Intel corridor scans 0.21 m behind (docs/experiments.md).
   double search_margin_ratio = 1.0;
+  // Where a prediction's refinement fits (scores min_score), a searched pose must also score
+  // search_min_ratio × typical (search_min_score, at least min_score; ScanTrackingThresholds
+  // sets it). A garbled scan (a passer-by, a laser's glitch) fits some pose of a ±0.3 m,
+  // ±0.5 rad window a little better than its prediction, degrees or decimetres away; a slip of
+  // the odometry is told from that by a match about as good as the usual ones, or by no
+  // prediction fitting at all. Without the bar (0) FR079 jumped 10.6° at a scan scoring 0.52
+  // against a typical 0.86, and Intel 0.36 m along a corridor where both poses scored about 0.5
+  // (docs/results.md, "Tracking on real data").
+  double search_min_ratio = 0.8;
+  double search_min_score = 0.0;
+
   // When the robot is found is the caller's decision (a lock, a pose given, a converged filter);
   // a filter counts as converged for this when its position and heading standard deviations
   // are within these (the filter's own test, 90 % of the weight within convergence_distance,
