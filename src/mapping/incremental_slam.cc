@@ -58,7 +58,8 @@ OccupancyGrid BuildNodeMap(const std::vector<PreparedScan>& scans,
   return map;
 }
 
-// Localizes every scan in 'map' from 'poses' (updated in place); returns how many matched.
+// Localizes every scan in 'map' from 'poses' (updated in place), searching those that fit far
+// worse than their neighbours (LocalizeScans); returns how many matched, were searched, moved.
 EveryScanStatistics LocalizeAll(const OccupancyGrid& map, const std::vector<PreparedScan>& scans,
                                 const SlamOptions& options, std::vector<Pose2>* poses,
                                 const std::function<void(std::size_t)>& tick) {
