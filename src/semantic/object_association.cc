@@ -167,7 +167,41 @@ std::vector<FittedPart> AssociateParts(std::vector<ObjectPart> parts,
     fitted[best_i].shape = fit(kept);
     fitted.erase(fitted.begin() + static_cast<long>(best_j));
   }
-  return fitted;
+  return AbsorbFragments(std::move(fitted), prior, options);
+}
+
+std::vector<FittedPart> AbsorbFragments(std::vector<FittedPart> fitted,
+                                        const ClassShapePrior& prior,
+                                        const ObjectExtractionOptions& options) {
+  if (!options.absorb_fragments) return fitted;
+  const double fragment = options.fragment_fraction * prior.Extent();
+  const double reach = 2.0 * options.merge_center_fraction * prior.HalfDiagonal();
+  const auto is_fragment = [&](const FittedPart& p) { return ShapeExtent(p.shape) < fragment; };
+  std::vector<bool> absorbed(fitted.size(), false);
+  for (std::size_t f = 0; f < fitted.size(); ++f) {
+    if (!is_fragment(fitted[f])) continue;
+    std::optional<std::size_t> nearest;
+    double best = reach;
+    for (std::size_t k = 0; k < fitted.size(); ++k) {
+      if (k == f || absorbed[k] || is_fragment(fitted[k])) continue;
+      const double distance = (fitted[f].shape.center - fitted[k].shape.center).norm();
+      if (distance < best && !PartsSeenAsTwo(fitted[f].part, fitted[k].part, options)) {
+        best = distance;
+        nearest = k;
+      }
+    }
+    if (!nearest) continue;
+    ObjectPart& object = fitted[*nearest].part;
+    object.frames.insert(fitted[f].part.frames.begin(), fitted[f].part.frames.end());
+    object.members.insert(object.members.end(), fitted[f].part.members.begin(),
+                          fitted[f].part.members.end());
+    absorbed[f] = true;
+  }
+  std::vector<FittedPart> kept;
+  for (std::size_t k = 0; k < fitted.size(); ++k) {
+    if (!absorbed[k]) kept.push_back(std::move(fitted[k]));
+  }
+  return kept;
 }
 
 namespace {

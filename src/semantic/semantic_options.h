@@ -131,8 +131,13 @@ struct ObjectExtractionOptions {
   // - their fitted footprints overlap by at least 'merge_overlap' of the smaller: solid
   //   objects do not overlap, and the fits of two neighbours overlap only by their errors (the
   //   prior's size_std, 0.05 m, on each side of a 0.5 m chair: 0.2 of it); above 1: never.
+  // - (absorb_fragments) a piece whose fitted shape spans less than 'fragment_fraction' of the
+  //   prior's extent, within the prior's diagonal of a larger part's centre, is a piece of that
+  //   object seen apart (AbsorbFragments): its detections count as the object's, its cells do
+  //   not reshape it. false: it stays an object of its own.
   int merge_gap_cells = 5;
   double fragment_fraction = 0.5;
+  bool absorb_fragments = true;
   double merge_center_fraction = 1.0;
   double merge_overlap = 0.25;
   // One object, one name (OneObjectTwoNames): parts of two classes whose footprints overlap by
