@@ -1,5 +1,5 @@
 // semchain bench closures --log L.clf (--relations R | --reference POSES | --perturb-odometry N)
-//     [--config C.yaml] [--particles N] [--seed S] [--oracle] --out DIR
+//     [--config C.yaml] [--particles N] [--seed S] [--oracle | --oracle-poses] --out DIR
 // Runs SLAM with the pose graph on, records every match its loop-closure searches score
 // (LoopClosureOptions::record_candidates) and labels each by the reference: true when its
 // relative pose is within 0.3 m and 2° of the reference's between the two nodes' scans
@@ -7,7 +7,9 @@
 // DIR/results.md (precision and recall at each score threshold: the score alone, after
 // verification, after the back end), DIR/precision_recall.png and DIR/trajectory.txt, with the
 // run's aligned ATE (reference poses) or relation errors (relations). With --oracle the
-// reference verifies the closures (LoopClosureOptions::oracle): what a perfect verifier gives.
+// reference verifies the closures (LoopClosureOptions::oracle): what a perfect verifier gives;
+// with --oracle-poses every closure that passed the score goes in at the reference's relative
+// pose (LoopClosureOptions::oracle_relative): what a perfect matcher and verifier give.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -42,6 +44,7 @@ struct BenchClosuresArgs {
   double record_min_score = 0.4;
   double min_weight = 0.5;
   bool oracle = false;
+  bool oracle_poses = false;
   eval::ClosureLabelOptions label;
   eval::ClosureReferenceOptions reference_options;
 };
@@ -235,6 +238,7 @@ Status WriteResults(const BenchClosuresArgs& args, const mapping::SlamOptions& o
       {"min_score", options.loop_closure.min_score},
       {"min_weight", args.min_weight},
       {"oracle_verification", args.oracle},
+      {"oracle_poses", args.oracle_poses},
       {"loop_loss", LossName(options.loop_closure.optimizer.loop_loss)},
       {"label_max_translation_m", args.label.max_translation_meters},
       {"label_max_rotation_deg", RadToDeg(args.label.max_rotation_radians)},
@@ -275,7 +279,15 @@ int RunBenchClosures(const BenchClosuresArgs& args) {
   if (!writable.ok()) return ReportError(writable);
   Result<Prepared> prepared = Prepare(args);
   if (!prepared.ok()) return ReportError(prepared.status());
-  if (args.oracle) {
+  if (args.oracle_poses) {
+    // Every closure that passed the score goes in at the reference's relative pose.
+    const eval::ClosureReference* reference = prepared->reference.get();
+    options->loop_closure.oracle_relative =
+        [reference](const mapping::LoopClosureCandidate& c) -> std::optional<Pose2> {
+      if (c.from_scan < 0 || c.to_scan < 0) return std::nullopt;
+      return reference->Relative(c.from_scan, c.to_scan);
+    };
+  } else if (args.oracle) {
     // Only the closures the reference labels true go in: the map a perfect verifier would give.
     const eval::ClosureReference* reference = prepared->reference.get();
     options->loop_closure.oracle = [reference, &args](const mapping::LoopClosureCandidate& c) {
@@ -335,9 +347,16 @@ void AddBenchClosures(CLI::App& bench, int& exit_code) {
       ->add_option("--max-bridge-turn", args->reference_options.max_bridge_radians,
                    "...and turning (rad)")
       ->capture_default_str();
-  command->add_flag("--oracle", args->oracle,
-                    "Verify by the reference: a closure that passed the score goes into the "
-                    "graph only when it is true (the map a perfect verifier would give)");
+  CLI::Option* oracle =
+      command->add_flag("--oracle", args->oracle,
+                        "Verify by the reference: a closure that passed the score goes into the "
+                        "graph only when it is true (the map a perfect verifier would give)");
+  command
+      ->add_flag("--oracle-poses", args->oracle_poses,
+                 "Measurement: every closure that passed the score goes into the graph at the "
+                 "reference's relative pose (dropped where the reference cannot join its "
+                 "scans): what exactly right closures give")
+      ->excludes(oracle);
   command->add_option("--out", args->out, "Output folder")->required();
   command->callback([args, &exit_code] { exit_code = bench_closures::RunBenchClosures(*args); });
 }

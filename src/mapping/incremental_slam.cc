@@ -83,10 +83,12 @@ std::vector<LoopClosureCandidate> WithScans(std::vector<LoopClosureCandidate> ca
   return candidates;
 }
 
-// 'oracle' (LoopClosureOptions::oracle, may be empty) called with the scan indices of the
-// candidate's nodes filled in from 'node_scans' (one per graph node; it outlives the result).
-std::function<bool(const LoopClosureCandidate&)> WithScanIndices(
-    const std::function<bool(const LoopClosureCandidate&)>& oracle,
+// 'oracle' (LoopClosureOptions::oracle or oracle_relative, may be empty) called with the scan
+// indices of the candidate's nodes filled in from 'node_scans' (one per graph node; it outlives
+// the result).
+template <typename Verdict>
+std::function<Verdict(const LoopClosureCandidate&)> WithScanIndices(
+    const std::function<Verdict(const LoopClosureCandidate&)>& oracle,
     const std::vector<int>* node_scans) {
   if (!oracle) return {};
   return [oracle, node_scans](const LoopClosureCandidate& candidate) {
@@ -103,6 +105,7 @@ IncrementalSlam::IncrementalSlam(const SlamOptions& options)
   if (options.pose_graph && options.loop_closure.online) {
     LoopClosureOptions closer = options.loop_closure;
     closer.oracle = WithScanIndices(options.loop_closure.oracle, &node_scans_);
+    closer.oracle_relative = WithScanIndices(options.loop_closure.oracle_relative, &node_scans_);
     loop_closer_.emplace(closer);
   }
 }
@@ -348,6 +351,7 @@ SlamResult IncrementalSlam::FinalPasses(const std::function<void(std::size_t)>& 
     for (const auto& node : nodes) node_indices.push_back(node.first);
     LoopClosureOptions closer = options_.loop_closure;
     closer.oracle = WithScanIndices(options_.loop_closure.oracle, &node_indices);
+    closer.oracle_relative = WithScanIndices(options_.loop_closure.oracle_relative, &node_indices);
     LoopClosureResult closed = CloseLoops(node_scans, node_poses, local_poses, closer);
     for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k].second = closed.poses[k];
     result.loop_closure = std::move(closed.statistics);

@@ -254,6 +254,21 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose,
     candidates[static_cast<std::size_t>(best.candidate)].innovation_sigmas =
         std::sqrt(innovation_squared);
   }
+  if (options.oracle_relative) {
+    const std::optional<Pose2> truth =
+        options.oracle_relative(AsCandidate(*closure, best.match.score));
+    if (!truth) {
+      ++stats.gated;
+      SetVerification(closure->id, ClosureVerification::kHeldBack);
+      return false;
+    }
+    PoseGraphEdge exact = *closure;
+    exact.relative = *truth;
+    innovation.error = PoseError(
+        exact.relative, estimate[static_cast<std::size_t>(exact.from)].Between(estimate[i]));
+    AddClosure(exact, innovation);
+    return true;
+  }
   if (options.oracle) {
     if (!options.oracle(AsCandidate(*closure, best.match.score))) {
       ++stats.gated;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "mapping/branch_and_bound_matcher.h"
@@ -173,6 +174,12 @@ struct LoopClosureOptions {
   // verifier. Called with the closure as a candidate (from, to, relative, score; the scan indices
   // where the caller knows them).
   std::function<bool(const LoopClosureCandidate&)> oracle;
+  // Measurement only (`semchain bench closures --oracle-poses`; not read from YAML): a closure
+  // that passed the score goes in with the relative pose this gives (the reference's) in place
+  // of its match's, and is dropped where it gives none. What the graph makes of closures that
+  // are exactly right tells the back end's and the front end's share of the error from the
+  // matcher's and the verifier's. Takes precedence over 'oracle'.
+  std::function<std::optional<Pose2>(const LoopClosureCandidate&)> oracle_relative;
 
   bool Validate(std::string* error) const;
 };

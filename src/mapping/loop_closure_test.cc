@@ -221,6 +221,49 @@ TEST(LoopClosureTest, AnOracleDecidesWhichClosuresGoIn) {
   EXPECT_LT(testing::MaxPositionError(closer.estimate(), given), 1e-9);
 }
 
+// With oracle_relative (bench closures --oracle-poses) every closure that passed the score goes
+// in at the relative pose the oracle gives, whatever its match said and the gate would have made
+// of it: given the truth, the drifted laps come back onto it at least as well as with the same
+// closures at their matched poses; given nothing, no closure goes in.
+TEST(LoopClosureTest, AnOracleCanGiveTheClosuresTheirRelativePoses) {
+  const LoopRun run = DriveTwoLaps(DegToRad(0.05));
+  LoopClosureOptions held = SigmaClosures();
+  held.gate_sigmas = 1e-3;
+  held.confirm_within_meters = 0.01;
+  int asked = 0;
+  LoopClosureOptions exact = held;
+  exact.oracle_relative = [&](const LoopClosureCandidate& c) -> std::optional<Pose2> {
+    ++asked;
+    return run.truth[static_cast<std::size_t>(c.from)].Between(
+        run.truth[static_cast<std::size_t>(c.to)]);
+  };
+  // 'oracle' is not asked when oracle_relative is there.
+  exact.oracle = [](const LoopClosureCandidate&) {
+    ADD_FAILURE() << "oracle asked";
+    return false;
+  };
+  const LoopClosureResult given = CloseLoops(Pointers(run.scans), run.drifted, exact);
+  ASSERT_GT(asked, 5);
+  EXPECT_EQ(given.statistics.accepted + given.statistics.rejected, asked);
+  EXPECT_EQ(given.statistics.rejected, 0);
+  LoopClosureOptions matched = held;
+  matched.oracle = [](const LoopClosureCandidate&) { return true; };
+  const LoopClosureResult as_matched = CloseLoops(Pointers(run.scans), run.drifted, matched);
+  EXPECT_EQ(as_matched.statistics.found, given.statistics.found);
+  const double exact_error = testing::MaxPositionError(given.poses, run.truth);
+  EXPECT_LE(exact_error, testing::MaxPositionError(as_matched.poses, run.truth) + 1e-3);
+  EXPECT_LT(exact_error, 0.3);
+  EXPECT_GT(testing::MaxPositionError(run.drifted, run.truth), 1.0);
+
+  LoopClosureOptions nothing = held;
+  nothing.oracle_relative = [](const LoopClosureCandidate&) -> std::optional<Pose2> {
+    return std::nullopt;
+  };
+  const LoopClosureResult none = CloseLoops(Pointers(run.scans), run.drifted, nothing);
+  EXPECT_EQ(none.statistics.accepted, 0);
+  EXPECT_EQ(none.statistics.gated, none.statistics.found);
+}
+
 void ExpectSameResult(const LoopClosureResult& a, const LoopClosureResult& b) {
   EXPECT_EQ(a.statistics.found, b.statistics.found);
   EXPECT_EQ(a.statistics.accepted, b.statistics.accepted);
