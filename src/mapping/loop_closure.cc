@@ -67,6 +67,22 @@ LoopClosureCandidate AsCandidate(const PoseGraphEdge& closure, double score) {
   return candidate;
 }
 
+// The closure as the oracle has it (LoopClosureOptions::oracle_relative: at the relative pose
+// it gives; oracle: as found), or nothing where the oracle keeps it out.
+std::optional<PoseGraphEdge> OracleVerdict(const PoseGraphEdge& closure, double score,
+                                           const LoopClosureOptions& options) {
+  const LoopClosureCandidate candidate = AsCandidate(closure, score);
+  if (options.oracle_relative) {
+    const std::optional<Pose2> relative = options.oracle_relative(candidate);
+    if (!relative) return std::nullopt;
+    PoseGraphEdge exact = closure;
+    exact.relative = *relative;
+    return exact;
+  }
+  if (!options.oracle(candidate)) return std::nullopt;
+  return closure;
+}
+
 }  // namespace
 
 struct LoopCloser::State {
@@ -243,9 +259,10 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose,
   if (!closure.has_value()) return false;
   // The closure's innovation: where it puts the node against where the graph does, and the
   // closure's own variances beside those of the path it had to be explained by.
+  const Pose2 graph_relative =
+      estimate[static_cast<std::size_t>(closure->from)].Between(estimate[i]);
   Innovation innovation;
-  innovation.error = PoseError(
-      closure->relative, estimate[static_cast<std::size_t>(closure->from)].Between(estimate[i]));
+  innovation.error = PoseError(closure->relative, graph_relative);
   innovation.motion = best.uncertainty.motion;
   innovation.fixed = best.uncertainty.fixed + CovarianceOf(*closure);
   const double innovation_squared =
@@ -254,28 +271,15 @@ bool LoopCloser::State::Add(const PreparedScan& scan, const Pose2& pose,
     candidates[static_cast<std::size_t>(best.candidate)].innovation_sigmas =
         std::sqrt(innovation_squared);
   }
-  if (options.oracle_relative) {
-    const std::optional<Pose2> truth =
-        options.oracle_relative(AsCandidate(*closure, best.match.score));
-    if (!truth) {
+  if (options.oracle_relative || options.oracle) {
+    const std::optional<PoseGraphEdge> verdict = OracleVerdict(*closure, best.match.score, options);
+    if (!verdict) {
       ++stats.gated;
       SetVerification(closure->id, ClosureVerification::kHeldBack);
       return false;
     }
-    PoseGraphEdge exact = *closure;
-    exact.relative = *truth;
-    innovation.error = PoseError(
-        exact.relative, estimate[static_cast<std::size_t>(exact.from)].Between(estimate[i]));
-    AddClosure(exact, innovation);
-    return true;
-  }
-  if (options.oracle) {
-    if (!options.oracle(AsCandidate(*closure, best.match.score))) {
-      ++stats.gated;
-      SetVerification(closure->id, ClosureVerification::kHeldBack);
-      return false;
-    }
-    AddClosure(*closure, innovation);
+    innovation.error = PoseError(verdict->relative, graph_relative);
+    AddClosure(*verdict, innovation);
     return true;
   }
   const double gate = options.gate_sigmas * options.gate_sigmas;

@@ -183,7 +183,8 @@ std::vector<FittedPart> AbsorbFragments(std::vector<FittedPart> fitted,
     std::optional<std::size_t> nearest;
     double best = reach;
     for (std::size_t k = 0; k < fitted.size(); ++k) {
-      if (k == f || absorbed[k] || is_fragment(fitted[k])) continue;
+      // Only whole parts take pieces in (an absorbed part was itself a piece).
+      if (k == f || is_fragment(fitted[k])) continue;
       const double distance = (fitted[f].shape.center - fitted[k].shape.center).norm();
       if (distance < best && !PartsSeenAsTwo(fitted[f].part, fitted[k].part, options)) {
         best = distance;
