@@ -1,5 +1,5 @@
 // semchain dataset --out DIR --images N --seed S [--size WxH] [--images-per-room K] [--threads T]
-//                  [--borrowed-footprints F]
+//                  [--borrowed-footprints F] [--desk-clocks F]
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -21,6 +21,7 @@ struct DatasetArgs {
   int images_per_room = 10;
   int threads = 2;
   double borrowed_footprints = 0.0;
+  double desk_clocks = 0.0;
 };
 
 Status ParseSize(const std::string& text, int* width, int* height) {
@@ -38,6 +39,7 @@ Status RunDataset(const DatasetArgs& args) {
   options.images_per_room = args.images_per_room;
   options.threads = args.threads;
   options.borrowed_footprint_fraction = args.borrowed_footprints;
+  options.desk_clock_fraction = args.desk_clocks;
   SEMCHAIN_RETURN_IF_ERROR(ParseSize(args.size, &options.width, &options.height));
   SEMCHAIN_RETURN_IF_ERROR(options.Validate());
   ProgressBar bar("dataset", static_cast<std::size_t>(options.images));
@@ -88,6 +90,11 @@ void AddDatasetCommand(CLI::App& app, int& exit_code) {
                    "Share (0..1) of furniture given the footprint size of another class of its "
                    "size group (a sofa the size of a bed, a cabinet the size of a table), so that "
                    "a detector cannot name objects by their size")
+      ->capture_default_str();
+  command
+      ->add_option("--desk-clocks", args->desk_clocks,
+                   "Share (0..1) of clocks that stand on a table as desk clocks instead of "
+                   "hanging on a wall")
       ->capture_default_str();
   command->callback([args, &exit_code] {
     const Status status = RunDataset(*args);

@@ -66,6 +66,7 @@ class DatasetWriter {
   Result<RoomOutput> WriteRoom(int room) const {
     RandomRoomOptions room_options;
     room_options.borrowed_footprint_fraction = options_.borrowed_footprint_fraction;
+    room_options.desk_clock_fraction = options_.desk_clock_fraction;
     const World world = RandomRoom(Derive(options_.seed, room, 1), room_options);
     RoomOutput output;
     output.split = SplitOfRoom(room, options_);
@@ -136,6 +137,7 @@ std::string SummaryJson(const DatasetSummary& summary, const DatasetOptions& opt
   json["seed"] = options.seed;
   json["size"] = {options.width, options.height};
   json["borrowed_footprint_fraction"] = options.borrowed_footprint_fraction;
+  json["desk_clock_fraction"] = options.desk_clock_fraction;
   for (const Split split : kSplits) {
     const int s = static_cast<int>(split);
     nlohmann::ordered_json& entry = json[SplitName(split)];
@@ -163,6 +165,9 @@ Status DatasetOptions::Validate() const {
   if (!(borrowed_footprint_fraction >= 0.0 && borrowed_footprint_fraction <= 1.0)) {
     return Status::Error("--borrowed-footprints must be 0..1, got " +
                          std::to_string(borrowed_footprint_fraction));
+  }
+  if (!(desk_clock_fraction >= 0.0 && desk_clock_fraction <= 1.0)) {
+    return Status::Error("--desk-clocks must be 0..1, got " + std::to_string(desk_clock_fraction));
   }
   if (val_rooms_in_ten < 0 || test_rooms_in_ten < 0 || val_rooms_in_ten + test_rooms_in_ten > 9) {
     return Status::Error("val and test rooms must leave training rooms (at most 9 in 10)");

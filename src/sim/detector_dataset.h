@@ -36,6 +36,8 @@ struct DatasetOptions {
   // RandomRoomOptions::borrowed_footprint_fraction of the rooms (0..1): objects whose size does
   // not tell their class.
   double borrowed_footprint_fraction = 0.0;
+  // RandomRoomOptions::desk_clock_fraction of the rooms (0..1): clocks on tables.
+  double desk_clock_fraction = 0.0;
 
   Status Validate() const;
 };

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
@@ -119,6 +121,61 @@ TEST(RandomRoomTest, ByDefaultFurnitureKeepsItsOwnSizes) {
   }
 }
 
+// With every clock asked for on a desk, clocks stand on the tables' tops, within their
+// footprints and clear of the computers; rooms keep the same walls and furniture as without.
+TEST(RandomRoomTest, DeskClocksStandOnTablesClearOfComputers) {
+  RandomRoomOptions options;
+  options.desk_clock_fraction = 1.0;
+  int on_desks = 0, on_walls = 0;
+  for (std::uint64_t seed = 0; seed < 30; ++seed) {
+    const World world = RandomRoom(seed, options);
+    std::vector<const Solid*> tables, computers;
+    for (const Solid& solid : world.objects) {
+      if (solid.class_name == "table") tables.push_back(&solid);
+      if (solid.class_name == "computer") computers.push_back(&solid);
+    }
+    for (const Solid& clock : world.objects) {
+      if (clock.class_name != "clock") continue;
+      const ClassSizeRange wall = SizeRangeOf("clock");
+      if (clock.base_height >= wall.base_min - 1e-9) {
+        ++on_walls;
+        continue;
+      }
+      ++on_desks;
+      const ClassSizeRange desk = DeskClockSizeRange();
+      EXPECT_LE(clock.footprint.depth, desk.depth_max + 1e-9);
+      EXPECT_GE(clock.height, desk.height_min - 1e-9);
+      const auto under = std::find_if(tables.begin(), tables.end(), [&](const Solid* table) {
+        return std::abs(table->base_height + table->height - clock.base_height) < 1e-9 &&
+               FootprintContains(table->footprint, clock.footprint.center);
+      });
+      ASSERT_NE(under, tables.end()) << "seed " << seed << ": a desk clock on no table";
+      // Both face the table's edges, so in the table's frame they are boxes along its axes.
+      const double yaw = (*under)->footprint.yaw;
+      const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw)), across(-along.y(), along.x());
+      for (const Solid* computer : computers) {
+        const Eigen::Vector2d d = computer->footprint.center - clock.footprint.center;
+        const bool apart =
+            std::abs(d.dot(along)) >= 0.5 * (clock.footprint.width + computer->footprint.width) ||
+            std::abs(d.dot(across)) >= 0.5 * (clock.footprint.depth + computer->footprint.depth);
+        EXPECT_TRUE(apart) << "seed " << seed << ": a desk clock inside a computer";
+      }
+    }
+    // What is placed before the clocks (walls, doors, the large pieces, the tables) is drawn
+    // as without desk clocks.
+    const World plain = RandomRoom(seed);
+    ASSERT_EQ(plain.walls.size(), world.walls.size());
+    for (std::size_t i = 0; i < plain.objects.size() && plain.objects[i].class_name != "clock";
+         ++i) {
+      ASSERT_LT(i, world.objects.size());
+      EXPECT_EQ(plain.objects[i].class_name, world.objects[i].class_name);
+      EXPECT_EQ(plain.objects[i].footprint.center, world.objects[i].footprint.center);
+    }
+  }
+  EXPECT_GT(on_desks, 20);
+  EXPECT_GT(on_walls, 0);  // rooms whose tables leave no room
+}
+
 // The truth box of every labelled object is the bounding box of its rendered pixels, and its
 // label line parses back to that box.
 TEST(DetectorDatasetTest, TruthBoxesBoundTheRenderedMasksAndLabelsParseBack) {
@@ -225,6 +282,12 @@ TEST(DetectorDatasetTest, BadOptionsWriteNothing) {
   const Result<DatasetSummary> share = WriteDetectorDataset(out, options);
   ASSERT_FALSE(share.ok());
   EXPECT_EQ(share.status().message(), "--borrowed-footprints must be 0..1, got 1.500000");
+  EXPECT_FALSE(fs::exists(out));
+  options = SmallSet(1);
+  options.desk_clock_fraction = -0.1;
+  const Result<DatasetSummary> clocks = WriteDetectorDataset(out, options);
+  ASSERT_FALSE(clocks.ok());
+  EXPECT_EQ(clocks.status().message(), "--desk-clocks must be 0..1, got -0.100000");
   EXPECT_FALSE(fs::exists(out));
   // A directory holding something else is not overwritten.
   fs::create_directories(out);

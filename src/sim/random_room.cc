@@ -121,32 +121,29 @@ class Furnisher {
       Place("computer");
       return;
     }
-    const Solid table = world_.objects[tables_[UniformInt(rng_, 0, int(tables_.size()) - 1)]];
-    const ClassSizeRange range = SizeRangeOf("computer");
-    Solid solid;
-    solid.class_name = "computer";
-    solid.shape = ObjectShape::kParts;
-    solid.texture_seed = static_cast<std::uint32_t>(rng_());
-    solid.footprint.width =
-        std::min(Uniform(rng_, range.width_min, range.width_max), table.footprint.width - 0.1);
-    solid.footprint.depth = Uniform(rng_, range.depth_min, range.depth_max);
-    solid.height = Uniform(rng_, range.height_min, range.height_max);
-    solid.base_height = table.base_height + table.height;
-    // Facing the table's front or back edge, somewhere along it.
-    const double side = Chance(rng_, 0.5) ? 1.0 : -1.0;
-    const double slack =
-        std::max(0.0, 0.5 * (table.footprint.width - solid.footprint.width) - 0.05);
-    const double x = Uniform(rng_, -slack, slack);
-    const double y =
-        side * std::max(0.0, 0.5 * table.footprint.depth - 0.5 * solid.footprint.depth - 0.05);
-    const double c = std::cos(table.footprint.yaw), s = std::sin(table.footprint.yaw);
-    solid.footprint.center = table.footprint.center + Eigen::Vector2d(c * x - s * y, s * x + c * y);
-    solid.footprint.yaw = NormalizeAngle(table.footprint.yaw + (side > 0 ? 0.0 : kPi));
-    const ClassLook look = DrawClassLook("computer", solid.texture_seed);
-    solid.color = look.color;
-    solid.texture = look.texture;
-    solid.parts = BuildClassParts(solid);
-    world_.objects.push_back(solid);
+    const Solid& table = world_.objects[tables_[UniformInt(rng_, 0, int(tables_.size()) - 1)]];
+    world_.objects.push_back(OnTable("computer", SizeRangeOf("computer"), table));
+  }
+
+  // A desk clock on one of the tables, clear of what stands there already (on a wall when no
+  // table has room).
+  void PlaceDeskClock() {
+    for (int attempt = 0; attempt < 10 && !tables_.empty(); ++attempt) {
+      const Solid& table = world_.objects[tables_[UniformInt(rng_, 0, int(tables_.size()) - 1)]];
+      if (table.footprint.width < 0.4) continue;
+      Solid clock = OnTable("clock", DeskClockSizeRange(), table);
+      const Polygon outline = FootprintOutline(clock.footprint);
+      const double top = table.base_height + table.height;
+      const bool clear =
+          std::none_of(world_.objects.begin(), world_.objects.end(), [&](const Solid& other) {
+            return other.base_height >= top - 1e-6 &&
+                   ConvexOverlap(outline, FootprintOutline(other.footprint));
+          });
+      if (!clear) continue;
+      world_.objects.push_back(std::move(clock));
+      return;
+    }
+    Place("clock");
   }
 
   void PlaceDistractor() {
@@ -174,6 +171,34 @@ class Furnisher {
   }
 
  private:
+  // An object of 'class_name' sized from 'range' standing on 'table', its front towards the
+  // table's front or back edge, somewhere along it.
+  Solid OnTable(const std::string& class_name, const ClassSizeRange& range, const Solid& table) {
+    Solid solid;
+    solid.class_name = class_name;
+    solid.shape = ObjectShape::kParts;
+    solid.texture_seed = static_cast<std::uint32_t>(rng_());
+    solid.footprint.width =
+        std::min(Uniform(rng_, range.width_min, range.width_max), table.footprint.width - 0.1);
+    solid.footprint.depth = Uniform(rng_, range.depth_min, range.depth_max);
+    solid.height = Uniform(rng_, range.height_min, range.height_max);
+    solid.base_height = table.base_height + table.height;
+    const double side = Chance(rng_, 0.5) ? 1.0 : -1.0;
+    const double slack =
+        std::max(0.0, 0.5 * (table.footprint.width - solid.footprint.width) - 0.05);
+    const double x = Uniform(rng_, -slack, slack);
+    const double y =
+        side * std::max(0.0, 0.5 * table.footprint.depth - 0.5 * solid.footprint.depth - 0.05);
+    const double c = std::cos(table.footprint.yaw), s = std::sin(table.footprint.yaw);
+    solid.footprint.center = table.footprint.center + Eigen::Vector2d(c * x - s * y, s * x + c * y);
+    solid.footprint.yaw = NormalizeAngle(table.footprint.yaw + (side > 0 ? 0.0 : kPi));
+    const ClassLook look = DrawClassLook(class_name, solid.texture_seed);
+    solid.color = look.color;
+    solid.texture = look.texture;
+    solid.parts = BuildClassParts(solid);
+    return solid;
+  }
+
   // The inward normal and a point of wall 'side' (0 south, 1 east, 2 north, 3 west) at
   // fraction 't' along it.
   std::pair<Eigen::Vector2d, Eigen::Vector2d> WallPoint(int side, double t) const {
@@ -278,6 +303,8 @@ class Furnisher {
 
 }  // namespace
 
+ClassSizeRange DeskClockSizeRange() { return {0.25, 0.5, 0.06, 0.2, 0.2, 0.4}; }
+
 std::vector<std::string> FootprintDonors(const std::string& class_name) {
   const std::vector<std::vector<std::string>> groups = {{"bucket", "cabinet", "chair", "stool"},
                                                         {"cabinet", "table", "sofa", "bed"}};
@@ -329,12 +356,20 @@ World RandomRoom(std::uint64_t seed, const RandomRoomOptions& options) {
     const std::string& name = classes[UniformInt(rng, 0, static_cast<int>(classes.size()) - 1)];
     if (name != "computer") order.push_back(name);
   }
+  int desk_clocks = 0;
   for (const std::string& name : order) {
+    // Drawn only when asked for, so that rooms without desk clocks keep their seeds' draws.
+    if (name == "clock" && options.desk_clock_fraction > 0.0 &&
+        Chance(rng, options.desk_clock_fraction)) {
+      ++desk_clocks;  // after the computers, so that they keep their places on the tables
+      continue;
+    }
     const int index = furnisher.Place(name);
     if (index >= 0 && name == "door") furnisher.NoteDoor(index);
   }
   furnisher.PlaceComputer();
   if (Chance(rng, 0.3)) furnisher.PlaceComputer();
+  for (int i = 0; i < desk_clocks; ++i) furnisher.PlaceDeskClock();
   const int distractors = UniformInt(rng, 0, options.distractors_max);
   for (int i = 0; i < distractors; ++i) furnisher.PlaceDistractor();
   world.object_shapes = ObjectShape::kParts;

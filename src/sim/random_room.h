@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/pose2.h"
+#include "sim/object_shapes.h"
 #include "sim/world.h"
 
 // Randomized furnished rooms for the detector's training set (semchain dataset, DESIGN.md
@@ -24,7 +25,15 @@ struct RandomRoomOptions {
   // would, so a detector trained only on each class's own sizes names objects by their size.
   // 0 keeps every class to its own range (and every earlier seed's rooms unchanged).
   double borrowed_footprint_fraction = 0.0;
+  // The share of clocks that stand on a table as a desk clock (a disc on a block up to 0.2 m
+  // deep, DeskClockSizeRange) rather than hang on a wall: a detector that has only seen clocks
+  // 1.8 m up on walls takes one on a desk for the computer that usually stands there. A clock
+  // goes on the wall when there is no table. 0 keeps every earlier seed's rooms unchanged.
+  double desk_clock_fraction = 0.0;
 };
+
+// Sizes of a desk clock (width, depth, height; its base is the table's top).
+ClassSizeRange DeskClockSizeRange();
 
 // The classes whose footprint ranges an object of 'class_name' may take: small furniture
 // (bucket, cabinet, chair, stool) trade among themselves, large furniture (cabinet, table, sofa,
