@@ -1,5 +1,5 @@
 // semchain bench detector --model M.onnx --data DATA/data.yaml [--split test] [--input WxH]
-//                         [--threads 2] --out DIR
+//                         [--threads 2] [--confusion-conf 0.25] --out DIR
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -26,6 +26,7 @@ struct BenchDetectorArgs {
   std::string split = "test";
   std::string input = "auto";  // the model's own (a static export's size), else 640x640
   int threads = 2;
+  double confusion_conf = 0.25;
   std::string out;
 };
 
@@ -56,11 +57,37 @@ std::string Markdown(const nlohmann::json& r, const std::vector<std::string>& na
                   c["objects"].get<int>(), c["ap50"].get<double>(), c["ap50_95"].get<double>());
     md += line;
   }
+  std::snprintf(line, sizeof(line),
+                "\nWhat the detector named each labelled object (rows; detections at confidence "
+                "%.2f or more paired one to one at IoU 0.45 or more, whatever their class); the "
+                "last row: detections on no labelled object.\n\n| object \\ named |",
+                r["confusion_conf"].get<double>());
+  md += line;
+  for (const std::string& name : names) md += " " + name + " |";
+  md += " missed |\n|---|";
+  for (std::size_t k = 0; k <= names.size(); ++k) md += "---|";
+  md += "\n";
+  const nlohmann::json& confusion = r["confusion"];
+  for (const std::string& row : names) {
+    md += "| " + row + " |";
+    for (const std::string& name : names) {
+      md += " " + std::to_string(confusion[row][name].get<int>()) + " |";
+    }
+    md += " " + std::to_string(confusion[row]["missed"].get<int>()) + " |\n";
+  }
+  md += "| (nothing) |";
+  for (const std::string& name : names) {
+    md += " " + std::to_string(confusion["unpaired"][name].get<int>()) + " |";
+  }
+  md += " |\n";
   return md;
 }
 
 Status RunBenchDetector(const BenchDetectorArgs& args) {
   if (args.threads < 1) return Status::Error("--threads must be at least 1");
+  if (!(args.confusion_conf >= 0.0 && args.confusion_conf <= 1.0)) {
+    return Status::Error("--confusion-conf must be 0..1");
+  }
   detection::YoloOptions options;
   SEMCHAIN_RETURN_IF_ERROR(detection::ParseInputSize(args.input, &options));
   // Scored as ultralytics validates: every box down to a confidence of 0.001, NMS at IoU 0.7.
@@ -75,10 +102,13 @@ Status RunBenchDetector(const BenchDetectorArgs& args) {
   SEMCHAIN_RETURN_IF_ERROR(EnsureWritableDirectory(args.out));
   std::unique_ptr<ProgressBar> bar;  // made once the number of images is known
   Result<detection::DetectorBenchmark> result =
-      detection::BenchmarkDetector(**detector, *dataset, args.split, [&bar](int done, int total) {
-        if (!bar) bar = std::make_unique<ProgressBar>("bench detector", total);
-        bar->Update(static_cast<std::size_t>(done));
-      });
+      detection::BenchmarkDetector(**detector, *dataset, args.split,
+                                   [&bar](int done, int total) {
+                                     if (!bar)
+                                       bar = std::make_unique<ProgressBar>("bench detector", total);
+                                     bar->Update(static_cast<std::size_t>(done));
+                                   },
+                                   {.min_score = args.confusion_conf});
   if (!result.ok()) return result.status();
   if (bar) bar->Finish();
   const detection::YoloDetector::Cost cost = (*detector)->ModelCost();
@@ -106,6 +136,16 @@ Status RunBenchDetector(const BenchDetectorArgs& args) {
     json["classes"][dataset->names[c]] = {
         {"objects", accuracy.truths}, {"ap50", accuracy.ap50}, {"ap50_95", accuracy.ap50_95}};
   }
+  json["confusion_conf"] = args.confusion_conf;
+  const int n = static_cast<int>(dataset->names.size());
+  for (int t = 0; t < n; ++t) {
+    nlohmann::json& row = json["confusion"][dataset->names[t]];
+    for (int d = 0; d < n; ++d) row[dataset->names[d]] = result->confusion.Count(t, d);
+    row["missed"] = result->confusion.Count(t, n);
+  }
+  for (int d = 0; d < n; ++d) {
+    json["confusion"]["unpaired"][dataset->names[d]] = result->confusion.Unpaired(d);
+  }
   const fs::path out(args.out);
   SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(out / "results.json", json.dump(2) + "\n"));
   SEMCHAIN_RETURN_IF_ERROR(WriteFileAtomically(out / "results.md", Markdown(json, dataset->names)));
@@ -123,7 +163,8 @@ void AddBenchDetector(CLI::App& bench, int& exit_code) {
       "detector",
       "Score a YOLOv8-format ONNX detector on a data set split (seed 000 Table 2): mAP@0.5, "
       "mAP@0.5:0.95, precision, recall, AP per class, ms per frame of the C++ runtime, GFLOPs, "
-      "parameters and file size -> DIR/results.json and DIR/results.md");
+      "parameters and file size, and which classes it mixes up (a confusion table) -> "
+      "DIR/results.json and DIR/results.md");
   auto args = std::make_shared<BenchDetectorArgs>();
   command->add_option("--model", args->model, "ONNX model (raw or decoded YOLOv8 head)")
       ->required()
@@ -142,6 +183,11 @@ void AddBenchDetector(CLI::App& bench, int& exit_code) {
                    "Network input WIDTHxHEIGHT, or auto: the model's export size")
       ->capture_default_str();
   command->add_option("--threads", args->threads, "OpenCV threads for inference")
+      ->capture_default_str();
+  command
+      ->add_option("--confusion-conf", args->confusion_conf,
+                   "Confidence from which detections count in the confusion table (what the "
+                   "detector named each labelled object)")
       ->capture_default_str();
   command->add_option("--out", args->out, "Output directory")->required();
   command->callback([args, &exit_code] {

@@ -1,9 +1,10 @@
 // semchain dataset --out DIR --images N --seed S [--size WxH] [--images-per-room K] [--threads T]
-//                  [--borrowed-footprints F] [--desk-clocks F]
+//                  [--borrowed-footprints F] [--desk-clocks F] [--world W.yaml]
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "apps/command.h"
 #include "core/progress_bar.h"
@@ -22,6 +23,7 @@ struct DatasetArgs {
   int threads = 2;
   double borrowed_footprints = 0.0;
   double desk_clocks = 0.0;
+  std::string world;  // views of this world, not random rooms
 };
 
 Status ParseSize(const std::string& text, int* width, int* height) {
@@ -40,6 +42,11 @@ Status RunDataset(const DatasetArgs& args) {
   options.threads = args.threads;
   options.borrowed_footprint_fraction = args.borrowed_footprints;
   options.desk_clock_fraction = args.desk_clocks;
+  if (!args.world.empty()) {
+    Result<sim::World> world = sim::LoadWorld(args.world);
+    if (!world.ok()) return world.status();
+    options.world = std::move(*world);
+  }
   SEMCHAIN_RETURN_IF_ERROR(ParseSize(args.size, &options.width, &options.height));
   SEMCHAIN_RETURN_IF_ERROR(options.Validate());
   ProgressBar bar("dataset", static_cast<std::size_t>(options.images));
@@ -96,6 +103,10 @@ void AddDatasetCommand(CLI::App& app, int& exit_code) {
                    "Share (0..1) of clocks that stand on a table as desk clocks instead of "
                    "hanging on a wall")
       ->capture_default_str();
+  command->add_option("--world", args->world,
+                      "Views of this world (YAML) instead of random rooms, all in the test split: "
+                      "how a detector does on its furniture (semchain bench detector --split "
+                      "test)");
   command->callback([args, &exit_code] {
     const Status status = RunDataset(*args);
     exit_code = status.ok() ? 0 : ReportError(status);

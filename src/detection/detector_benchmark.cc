@@ -13,7 +13,8 @@ namespace fs = std::filesystem;
 
 Result<DetectorBenchmark> BenchmarkDetector(Detector& detector, const YoloDataset& dataset,
                                             const std::string& split,
-                                            const std::function<void(int, int)>& progress) {
+                                            const std::function<void(int, int)>& progress,
+                                            const ConfusionOptions& confusion) {
   if (detector.class_names() != dataset.names) {
     return Status::Error("the model's classes (" + std::to_string(detector.class_names().size()) +
                          ") are not the data set's (" + std::to_string(dataset.names.size()) +
@@ -23,6 +24,7 @@ Result<DetectorBenchmark> BenchmarkDetector(Detector& detector, const YoloDatase
   if (!images.ok()) return images.status();
   DetectorBenchmark result;
   DetectionEvaluator evaluator(static_cast<int>(dataset.names.size()));
+  result.confusion = ConfusionMatrix(static_cast<int>(dataset.names.size()), confusion);
   std::vector<double> times_ms;
   for (const fs::path& path : *images) {
     const cv::Mat bgr = cv::imread(path.string(), cv::IMREAD_COLOR);
@@ -45,6 +47,7 @@ Result<DetectorBenchmark> BenchmarkDetector(Detector& detector, const YoloDatase
     if (!detections.ok()) return detections.status();
     times_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
     evaluator.AddImage(*detections, truths);
+    result.confusion.AddImage(*detections, truths);
     result.truths += static_cast<int>(truths.size());
     ++result.images;
     if (progress) progress(result.images, static_cast<int>(images->size()));

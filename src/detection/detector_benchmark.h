@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "detection/confusion_matrix.h"
 #include "detection/detection_metrics.h"
 #include "detection/detector.h"
 #include "detection/yolo_dataset.h"
@@ -17,7 +18,8 @@ struct DetectorBenchmark {
   int images = 0;
   int truths = 0;
   DetectionAccuracy accuracy;
-  double mean_ms = 0.0;  // wall time of Detect per frame
+  ConfusionMatrix confusion{0};  // sized to the data set's classes
+  double mean_ms = 0.0;          // wall time of Detect per frame
   double median_ms = 0.0;
 };
 
@@ -26,6 +28,7 @@ struct DetectorBenchmark {
 // names must be the data set's. 'progress' gets the images done.
 Result<DetectorBenchmark> BenchmarkDetector(Detector& detector, const YoloDataset& dataset,
                                             const std::string& split,
-                                            const std::function<void(int, int)>& progress = {});
+                                            const std::function<void(int, int)>& progress = {},
+                                            const ConfusionOptions& confusion = {});
 
 }  // namespace semchain::detection

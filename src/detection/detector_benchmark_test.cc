@@ -71,6 +71,16 @@ TEST(DetectorBenchmarkTest, ExactModelScoresFullMapOnItsSquares) {
   EXPECT_GT(result->accuracy.map50, 0.99);
   EXPECT_GT(result->accuracy.recall, 0.99);
   EXPECT_GT(result->mean_ms, 0.0);
+  // Every square named by its own class, none missed, nothing where there is no square.
+  const ConfusionMatrix& confusion = result->confusion;
+  ASSERT_EQ(confusion.class_count(), 3);
+  int named_right = 0;
+  for (int t = 0; t < 3; ++t) {
+    named_right += confusion.Count(t, t);
+    EXPECT_EQ(confusion.Count(t, 3), 0) << "class " << t << " missed";
+    EXPECT_EQ(confusion.Unpaired(t), 0) << "class " << t;
+  }
+  EXPECT_EQ(named_right, 8);
 }
 
 TEST(DetectorBenchmarkTest, BadDataSetsAreErrors) {

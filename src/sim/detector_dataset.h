@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,11 @@ struct DatasetOptions {
   double borrowed_footprint_fraction = 0.0;
   // RandomRoomOptions::desk_clock_fraction of the rooms (0..1): clocks on tables.
   double desk_clock_fraction = 0.0;
+  // Views of this world instead of random rooms, every image in the test split: how a detector
+  // does on a world's own furniture (`bench detector`). Its classes must be the first of
+  // DefaultClassNames(), in that order, so that label ids are the data set's. Groups of
+  // images_per_room views count as its rooms.
+  std::optional<World> world;
 
   Status Validate() const;
 };

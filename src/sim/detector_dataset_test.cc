@@ -269,6 +269,52 @@ TEST(DetectorDatasetTest, SplitsComeFromDisjointRooms) {
       std::string::npos);
 }
 
+// Views of a given world: every image in the test split, every label one of that world's
+// objects as the renderer shows it.
+TEST(DetectorDatasetTest, ViewsOfAGivenWorldGoToTheTestSplit) {
+  DatasetOptions options = SmallSet(2);
+  options.world = RandomRoom(5);
+  const fs::path out = TempPath("dataset_world");
+  const Result<DatasetSummary> summary = WriteDetectorDataset(out, options);
+  ASSERT_TRUE(summary.ok()) << summary.status().message();
+  EXPECT_EQ(summary->images[0] + summary->images[1], 0);
+  EXPECT_EQ(summary->images[2], 24);
+  EXPECT_TRUE(fs::is_empty(out / "images" / "train"));
+  int labelled = 0;
+  std::set<int> classes;
+  for (const auto& entry : fs::directory_iterator(out / "labels" / "test")) {
+    const Result<std::vector<YoloLabel>> labels = ReadYoloLabels(entry.path(), 10);
+    ASSERT_TRUE(labels.ok()) << labels.status().message();
+    for (const YoloLabel& label : *labels) classes.insert(label.class_id);
+    labelled += static_cast<int>(labels->size());
+  }
+  EXPECT_GT(labelled, 24);
+  // The room's objects and nothing else: its classes, most of them seen.
+  std::set<int> in_room;
+  for (const Solid& solid : options.world->objects) {
+    const auto& names = DefaultClassNames();
+    in_room.insert(
+        static_cast<int>(std::find(names.begin(), names.end(), solid.class_name) - names.begin()));
+  }
+  for (const int c : classes) EXPECT_TRUE(in_room.count(c)) << "class " << c;
+  EXPECT_GE(classes.size(), in_room.size() - 2);
+  EXPECT_NE(ReadFile(out / "summary.json")->find("\"world\": \"random_room_5\""),
+            std::string::npos);
+}
+
+TEST(DetectorDatasetTest, AWorldOfOtherClassesIsAnError) {
+  DatasetOptions options = SmallSet(1);
+  options.world = RandomRoom(5);
+  options.world->classes = {"chair", "door"};
+  const fs::path out = TempPath("dataset_world_classes");
+  const Result<DatasetSummary> summary = WriteDetectorDataset(out, options);
+  ASSERT_FALSE(summary.ok());
+  EXPECT_NE(summary.status().message().find("its classes must be the first of the ten"),
+            std::string::npos)
+      << summary.status().message();
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(DetectorDatasetTest, BadOptionsWriteNothing) {
   const fs::path out = TempPath("dataset_bad");
   DatasetOptions options = SmallSet(1);
