@@ -13,11 +13,13 @@ ConfusionMatrix::ConfusionMatrix(int class_count, const ConfusionOptions& option
 void ConfusionMatrix::AddImage(const std::vector<Detection>& detections,
                                const std::vector<TruthBox>& truths) {
   const auto known = [this](int id) { return id >= 0 && id < class_count_; };
+  const auto counted = [&](const Detection& detection) {
+    return detection.score >= options_.min_score && known(detection.class_id);
+  };
   std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;  // IoU, detection, truth
   for (std::size_t d = 0; d < detections.size(); ++d) {
-    if (detections[d].score < options_.min_score || !known(detections[d].class_id)) continue;
-    const std::array<double, 4> box = {detections[d].box[0], detections[d].box[1],
-                                       detections[d].box[2], detections[d].box[3]};
+    if (!counted(detections[d])) continue;
+    const std::array<double, 4> box = BoxOf(detections[d]);
     for (std::size_t t = 0; t < truths.size(); ++t) {
       if (!known(truths[t].class_id)) continue;
       const double iou = BoxIou(box, truths[t].box);
@@ -37,11 +39,8 @@ void ConfusionMatrix::AddImage(const std::vector<Detection>& detections,
     if (known(truths[t].class_id) && !truth_paired[t]) ++counts_[truths[t].class_id][class_count_];
   }
   for (std::size_t d = 0; d < detections.size(); ++d) {
-    if (detection_paired[d] || detections[d].score < options_.min_score ||
-        !known(detections[d].class_id)) {
-      continue;
-    }
-    ++counts_[class_count_][detections[d].class_id];
+    if (!detection_paired[d] && counted(detections[d]))
+      ++counts_[class_count_][detections[d].class_id];
   }
 }
 

@@ -2,16 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include "detection/testing/detections.h"
+
 namespace semchain::detection {
 namespace {
 
-Detection Detected(int class_id, double score, double x1, double y1, double x2, double y2) {
-  Detection d;
-  d.class_id = class_id;
-  d.score = score;
-  d.box[0] = x1, d.box[1] = y1, d.box[2] = x2, d.box[3] = y2;
-  return d;
-}
+using testing::Predicted;
 
 // A sofa named a bed, a chair found, a stool missed, a bed seen where there is nothing, and a
 // detection below the confidence bar that counts for nothing.
@@ -19,8 +15,8 @@ TEST(ConfusionMatrixTest, CountsNamesMissesAndUnpairedDetections) {
   constexpr int kChair = 0, kStool = 1, kSofa = 2, kBed = 3, kMissed = 4;
   ConfusionMatrix matrix(4, {.min_score = 0.4, .min_iou = 0.45});
   matrix.AddImage(
-      {Detected(kBed, 0.9, 0, 0, 100, 50), Detected(kChair, 0.6, 200, 0, 240, 60),
-       Detected(kBed, 0.5, 300, 100, 400, 160), Detected(kStool, 0.3, 120, 0, 150, 30)},
+      {Predicted(kBed, 0.9, 0, 0, 100, 50), Predicted(kChair, 0.6, 200, 0, 240, 60),
+       Predicted(kBed, 0.5, 300, 100, 400, 160), Predicted(kStool, 0.3, 120, 0, 150, 30)},
       {{kSofa, {2, 0, 100, 52}}, {kChair, {200, 2, 240, 60}}, {kStool, {120, 0, 150, 30}}});
   EXPECT_EQ(matrix.Count(kSofa, kBed), 1);
   EXPECT_EQ(matrix.Count(kSofa, kSofa), 0);
@@ -40,13 +36,13 @@ TEST(ConfusionMatrixTest, CountsNamesMissesAndUnpairedDetections) {
 // side each keep the detection that overlaps them most.
 TEST(ConfusionMatrixTest, PairsOneToOneLargestOverlapFirst) {
   ConfusionMatrix matrix(3);
-  matrix.AddImage({Detected(1, 0.9, 0, 0, 14, 10), Detected(0, 0.5, 0, 0, 10, 10)},
+  matrix.AddImage({Predicted(1, 0.9, 0, 0, 14, 10), Predicted(0, 0.5, 0, 0, 10, 10)},
                   {{0, {0, 0, 10, 10}}});
   EXPECT_EQ(matrix.Count(0, 0), 1);
   EXPECT_EQ(matrix.Count(0, 1), 0);
   EXPECT_EQ(matrix.Unpaired(1), 1);
   ConfusionMatrix side_by_side(3);
-  side_by_side.AddImage({Detected(2, 0.9, 8, 0, 20, 10), Detected(1, 0.8, 0, 0, 11, 10)},
+  side_by_side.AddImage({Predicted(2, 0.9, 8, 0, 20, 10), Predicted(1, 0.8, 0, 0, 11, 10)},
                         {{1, {0, 0, 10, 10}}, {2, {10, 0, 20, 10}}});
   EXPECT_EQ(side_by_side.Count(1, 1), 1);
   EXPECT_EQ(side_by_side.Count(2, 2), 1);

@@ -52,8 +52,7 @@ void DetectionEvaluator::AddImage(const std::vector<Detection>& detections,
   for (const std::size_t i : order) {
     const Detection& detection = detections[i];
     if (detection.class_id < 0 || detection.class_id >= class_count_) continue;
-    const std::array<double, 4> box = {detection.box[0], detection.box[1], detection.box[2],
-                                       detection.box[3]};
+    const std::array<double, 4> box = BoxOf(detection);
     Scored scored{detection.score, {}};
     for (int t = 0; t < kThresholds; ++t) {
       const double threshold = 0.5 + 0.05 * t;

@@ -16,6 +16,11 @@ struct TruthBox {
   std::array<double, 4> box = {0.0, 0.0, 0.0, 0.0};  // x1, y1, x2, y2 in pixels
 };
 
+// A detection's box as the metrics take it.
+inline std::array<double, 4> BoxOf(const Detection& detection) {
+  return {detection.box[0], detection.box[1], detection.box[2], detection.box[3]};
+}
+
 // Intersection over union of two [x1, y1, x2, y2] boxes (0 when either is empty).
 double BoxIou(const std::array<double, 4>& a, const std::array<double, 4>& b);
 

@@ -2,16 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include "detection/testing/detections.h"
+
 namespace semchain::detection {
 namespace {
 
-Detection Predicted(int class_id, double score, double x1, double y1, double x2, double y2) {
-  Detection d;
-  d.class_id = class_id;
-  d.score = score;
-  d.box[0] = x1, d.box[1] = y1, d.box[2] = x2, d.box[3] = y2;
-  return d;
-}
+using testing::Predicted;
 
 TEST(DetectionMetricsTest, IouOfKnownBoxes) {
   EXPECT_DOUBLE_EQ(BoxIou({0, 0, 10, 10}, {0, 0, 10, 10}), 1.0);

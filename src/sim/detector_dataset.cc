@@ -67,8 +67,9 @@ class DatasetWriter {
     RandomRoomOptions room_options;
     room_options.borrowed_footprint_fraction = options_.borrowed_footprint_fraction;
     room_options.desk_clock_fraction = options_.desk_clock_fraction;
-    const World world =
-        options_.world ? *options_.world : RandomRoom(Derive(options_.seed, room, 1), room_options);
+    std::optional<World> random_room;
+    if (!options_.world) random_room = RandomRoom(Derive(options_.seed, room, 1), room_options);
+    const World& world = options_.world ? *options_.world : *random_room;
     RoomOutput output;
     output.split = SplitOfRoom(room, options_);
     output.instances.assign(DefaultClassNames().size(), 0);
@@ -84,6 +85,12 @@ class DatasetWriter {
                                 options_.width, options_.height, view_seed);
       }
       if (!view) {
+        // A given world's views are placed inside its first wall line, as a room's are.
+        if (options_.world) {
+          return Status::Error("--world " + world.name +
+                               ": no free spot inside its outer wall to take image " +
+                               std::to_string(index) + " from");
+        }
         return Status::Error("room " + std::to_string(room) + ": no free spot to take frame " +
                              std::to_string(k) + " from");
       }
