@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The shipped detector finds the ten classes in rooms it was never trained on: a small data set of
-# held-out seed 202 (models/README.md; training used seeds 101-113), its test split (20 images,
+# held-out seed 202 (models/README.md; training used seeds 101-119), its test split (20 images,
 # two rooms) scored by `semchain bench detector`. The floor sits below what the default model
 # scores on seed 202's 2000-image test split (docs/results.md, "Detector"), so that another round
 # of training passes and a model that no longer detects (a broken export, the wrong weights, a
