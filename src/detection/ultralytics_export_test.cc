@@ -7,6 +7,7 @@
 
 #include <fstream>
 
+#include "detection/detection_metrics.h"
 #include "detection/testing/square_scene.h"
 #include "detection/yolo_detector.h"
 #include "sensors/detection.h"
@@ -41,18 +42,6 @@ std::vector<Detection> DetectOn(YoloDetector& detector, const cv::Mat& rgb) {
   Result<std::vector<Detection>> found = detector.Detect(rgb);
   EXPECT_TRUE(found.ok()) << found.status().message();
   return found.ok() ? *found : std::vector<Detection>();
-}
-
-std::array<double, 4> Box(const Detection& d) { return {d.box[0], d.box[1], d.box[2], d.box[3]}; }
-
-double Iou(const Detection& a, const Detection& b) {
-  const double w = std::min(a.box[2], b.box[2]) - std::max(a.box[0], b.box[0]);
-  const double h = std::min(a.box[3], b.box[3]) - std::max(a.box[1], b.box[1]);
-  if (w <= 0 || h <= 0) return 0.0;
-  const auto area = [](const Detection& d) {
-    return (d.box[2] - d.box[0]) * (d.box[3] - d.box[1]);
-  };
-  return w * h / (area(a) + area(b) - w * h);
 }
 
 // The default export runs unchanged (its decoding cut in memory) and gives exactly the boxes,
@@ -133,10 +122,11 @@ TEST(UltralyticsExportTest, TheHalfPrecisionExportFindsWhatTheSingleFinds) {
     for (const Detection& d : a) {
       if (d.score < 0.15) continue;  // near the threshold the rounding may tip it either way
       const auto same = std::find_if(b.begin(), b.end(), [&](const Detection& e) {
-        return e.class_id == d.class_id && Iou(d, e) > 0.95 && std::abs(e.score - d.score) < 0.02;
+        return e.class_id == d.class_id && BoxIou(BoxOf(d), BoxOf(e)) > 0.95 &&
+               std::abs(e.score - d.score) < 0.02;
       });
       EXPECT_NE(same, b.end()) << "seed " << seed << ": " << d.class_name << " at "
-                               << ::testing::PrintToString(Box(d));
+                               << ::testing::PrintToString(BoxOf(d));
       ++matched;
     }
   }
@@ -150,7 +140,7 @@ std::filesystem::path WriteMap(const std::string& name, const std::string& text)
 }
 
 bool SameDetection(const Detection& a, const Detection& b) {
-  return Box(a) == Box(b) && a.score == b.score;
+  return BoxOf(a) == BoxOf(b) && a.score == b.score;
 }
 
 // A class map turns the model's classes into semchain's: the mapped ones keep their boxes and
@@ -191,7 +181,7 @@ TEST(UltralyticsExportTest, AClassMapRenamesMergesAndDrops) {
     EXPECT_EQ(chair.class_id, 3);
     EXPECT_TRUE(std::any_of(candidates.begin(), candidates.end(), [&](const Detection& d) {
       return named(d) && SameDetection(d, chair);
-    })) << ::testing::PrintToString(Box(chair));
+    })) << ::testing::PrintToString(BoxOf(chair));
   }
   // With it: fewer boxes than the two classes keep apart, as the two are one class now.
   const std::vector<Detection> chairs = DetectOn(*mapped, image);
